@@ -1,0 +1,26 @@
+// SPDX-License-Identifier: MIT
+// Compile-time limits and descriptor slots shared by GLSL and C++ (STYLE §12). Each value says why.
+#ifndef SKY_SHARED_BINDINGS_H
+#define SKY_SHARED_BINDINGS_H
+#include "shaders/shared/prelude.h"
+
+// Volumetric layers per weather window: DESIGN §3 asks for up to 4 (low, middle, convective, spare).
+#define MAX_CLOUD_LAYERS 4
+
+// 8x8 = 64 invocations: a multiple of both NVIDIA's 32-wide warps and lavapipe's 8-wide SIMD.
+#define WORKGROUP_SIZE_2D 8
+// 4x4x4 = 64 invocations for 3D noise generation, for the same reason.
+#define WORKGROUP_SIZE_3D 4
+
+// Noise texture sizes (DESIGN §3: Perlin-Worley 128^3 RGBA8, Worley 32^3, 2D curl noise).
+#define BASE_NOISE_SIZE 128
+#define DETAIL_NOISE_SIZE 32
+#define CURL_NOISE_SIZE 128
+// Blue noise tile for the march's start offset: 64^2 is big enough that the pattern is not visible.
+#define BLUE_NOISE_SIZE 64
+
+// Weather window: a camera-centred square texture grid (see weather_window.h).
+// 256 texels over the default 1600 km gives 6.25 km texels, finer than 0.25-degree model data.
+#define WEATHER_WINDOW_SIZE 256
+
+#endif

@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+// Layout of the camera-centred weather window, shared by the CPU resampler and the shaders.
+//
+// The window is an azimuthal equidistant projection centred on the eye (GeographicLib
+// AzimuthalEquidistant on WGS84): texel (i, j) of a WEATHER_WINDOW_SIZE^2 grid covers the point at
+// easting x = (i + 0.5 - N/2) * texelSizeM and northing y = (j + 0.5 - N/2) * texelSizeM from the eye.
+// It is stored as a 2D array texture, RGBA32F, with WEATHER_WINDOW_SLICES slices:
+//
+//   slice 2k   (k < MAX_CLOUD_LAYERS): coverage [0,1], base altitude (m), top altitude (m), cloud type (0..10, CIGI)
+//   slice 2k+1                         : wind east (m/s), wind north (m/s), precipitation rate (mm/h), CAPE (J/kg)
+//   slice HIGH_SLICE                  : high-cloud coverage [0,1], altitude (m), type (3,4,5), unused
+//   slice HIGH_SLICE+1                : high-level wind east (m/s), wind north (m/s), tropopause altitude (m), unused
+//
+// Altitudes are metres above the WGS84 ellipsoid, the same datum as the eye altitude (the model's
+// mean-sea-level heights are taken as ellipsoid heights; README "Datums" says why).
+// A coverage of 0 means "no cloud" whatever the other channels hold. Types are categorical: shaders
+// read them with the nearest texel, everything else with bilinear filtering.
+#ifndef SKY_SHARED_WEATHER_WINDOW_H
+#define SKY_SHARED_WEATHER_WINDOW_H
+#include "shaders/shared/bindings.h"
+
+#define WEATHER_WINDOW_HIGH_SLICE (2 * MAX_CLOUD_LAYERS)
+#define WEATHER_WINDOW_SLICES (2 * MAX_CLOUD_LAYERS + 2)
+
+// CIGI / WMO genera (DESIGN §3).
+#define CLOUD_TYPE_NONE 0
+#define CLOUD_TYPE_ALTOCUMULUS 1
+#define CLOUD_TYPE_ALTOSTRATUS 2
+#define CLOUD_TYPE_CIRROCUMULUS 3
+#define CLOUD_TYPE_CIRROSTRATUS 4
+#define CLOUD_TYPE_CIRRUS 5
+#define CLOUD_TYPE_CUMULONIMBUS 6
+#define CLOUD_TYPE_CUMULUS 7
+#define CLOUD_TYPE_NIMBOSTRATUS 8
+#define CLOUD_TYPE_STRATOCUMULUS 9
+#define CLOUD_TYPE_STRATUS 10
+
+#endif

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: MIT
+// WeatherSnapshot: the weather at one valid time on a regular latitude/longitude grid, in SI units.
+//
+// This is the one type that crosses from weather_ingest/ (which fills it from GRIB2/NetCDF) to
+// skyservice/ (which renders it). It depends on nothing but the standard library, so skyservice
+// never sees ecCodes or netCDF (DESIGN §1).
+//
+// Conventions:
+//  - Grid: cell (iLat, iLon) is at latitude lat0Deg + iLat*dLatDeg, longitude lon0Deg + iLon*dLonDeg
+//    (degrees; dLatDeg may be negative for north-to-south data, dLonDeg > 0). Fields are row-major,
+//    index = iLat * nLon + iLon. Longitudes may be in any convention; a grid whose nLon*dLonDeg is
+//    360 wraps around the antimeridian.
+//  - Altitudes: metres above the WGS84 ellipsoid (model heights above mean sea level are taken as
+//    ellipsoid heights; see README "Datums").
+//  - Coverage: fraction [0,1]. Precipitation rate: mm/h (equivalently kg m^-2 h^-1). CAPE: J/kg.
+//    Wind: m/s, positive towards east (U) and north (V).
+//  - Missing values: NaN in a field means "unknown" and is treated as no cloud by the renderer.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace sky
+{
+
+/// Volumetric layers per snapshot; equals MAX_CLOUD_LAYERS in shaders/shared/bindings.h.
+inline constexpr int kMaxCloudLayers = 4;
+
+/// WMO cloud genera, numbered as CIGI does (DESIGN §3).
+enum class CloudType : uint8_t
+{
+    None = 0,
+    Altocumulus = 1,
+    Altostratus = 2,
+    Cirrocumulus = 3,
+    Cirrostratus = 4,
+    Cirrus = 5,
+    Cumulonimbus = 6,
+    Cumulus = 7,
+    Nimbostratus = 8,
+    Stratocumulus = 9,
+    Stratus = 10,
+};
+
+/// A regular latitude/longitude grid (degrees).
+struct LatLonGrid
+{
+    double lat0Deg = 0;  ///< latitude of row 0 (degrees)
+    double lon0Deg = 0;  ///< longitude of column 0 (degrees)
+    double dLatDeg = 1;  ///< row spacing (degrees, may be negative)
+    double dLonDeg = 1;  ///< column spacing (degrees, > 0)
+    uint32_t nLat = 0;   ///< rows
+    uint32_t nLon = 0;   ///< columns
+
+    size_t cellCount() const { return size_t(nLat) * size_t(nLon); }
+    size_t index(uint32_t iLat, uint32_t iLon) const { return size_t(iLat) * nLon + iLon; }
+};
+
+/// One volumetric cloud layer: every vector has grid.cellCount() values.
+struct CloudLayerFields
+{
+    std::string name;                     ///< e.g. "low", "middle", "convective" (for humans)
+    std::vector<float> coverage;          ///< fraction [0,1]
+    std::vector<float> baseAltitudeM;     ///< cloud base (m above ellipsoid)
+    std::vector<float> topAltitudeM;      ///< cloud top (m above ellipsoid)
+    std::vector<uint8_t> type;            ///< CloudType per cell
+    std::vector<float> precipitationMmH;  ///< precipitation rate falling from this layer (mm/h)
+    std::vector<float> windEastMS;        ///< wind at mid-layer (m/s, towards east)
+    std::vector<float> windNorthMS;       ///< wind at mid-layer (m/s, towards north)
+};
+
+/// The high-altitude 2D texture layer (cirrus, cirrostratus, cirrocumulus).
+struct HighCloudFields
+{
+    std::vector<float> coverage;       ///< fraction [0,1]
+    std::vector<float> altitudeM;      ///< m above ellipsoid
+    std::vector<uint8_t> type;         ///< CloudType (Cirrocumulus, Cirrostratus or Cirrus)
+    std::vector<float> windEastMS;     ///< upper-level wind (m/s)
+    std::vector<float> windNorthMS;    ///< upper-level wind (m/s)
+};
+
+/// The weather at one valid time. A snapshot with layers.empty() is clear sky.
+struct WeatherSnapshot
+{
+    LatLonGrid grid;
+    int64_t validTimeUnixS = 0;                ///< valid time (seconds since 1970-01-01T00:00:00Z)
+    std::vector<CloudLayerFields> layers;      ///< at most kMaxCloudLayers, lowest first
+    HighCloudFields high;                      ///< empty vectors mean no high cloud
+    std::vector<float> capeJKg;                ///< convective available potential energy (J/kg), may be empty
+    std::vector<float> tropopauseAltitudeM;    ///< m above ellipsoid, may be empty
+    std::map<std::string, std::string> provenance;  ///< field name -> where it came from (file, message, variable)
+};
+
+}  // namespace sky
