@@ -82,6 +82,16 @@ struct HighCloudFields
     std::vector<float> windNorthMS;    ///< upper-level wind (m/s)
 };
 
+/// An optional 3D field on pressure levels (e.g. GFS cloud mixing ratio), kept for consumers that want the
+/// vertical profile (added by weather_ingest; the renderer may ignore it).
+struct PressureLevelField
+{
+    std::string name;                ///< e.g. "cloudMixingRatio"
+    std::string units;               ///< SI units of values, e.g. "kg/kg"
+    std::vector<float> pressurePa;   ///< level pressures (Pa), one per level, decreasing (surface first)
+    std::vector<float> values;       ///< level-major: values[k * grid.cellCount() + cell]; NaN = unknown
+};
+
 /// The weather at one valid time. A snapshot with layers.empty() is clear sky.
 struct WeatherSnapshot
 {
@@ -92,6 +102,7 @@ struct WeatherSnapshot
     std::vector<float> capeJKg;                ///< convective available potential energy (J/kg), may be empty
     std::vector<float> tropopauseAltitudeM;    ///< m above ellipsoid, may be empty
     std::map<std::string, std::string> provenance;  ///< field name -> where it came from (file, message, variable)
+    std::vector<PressureLevelField> levelFields;    ///< optional 3D fields (added by weather_ingest), may be empty
 };
 
 }  // namespace sky

@@ -10,6 +10,8 @@
 //   slice 2k+1                         : wind east (m/s), wind north (m/s), precipitation rate (mm/h), CAPE (J/kg)
 //   slice HIGH_SLICE                  : high-cloud coverage [0,1], altitude (m), type (3,4,5), unused
 //   slice HIGH_SLICE+1                : high-level wind east (m/s), wind north (m/s), tropopause altitude (m), unused
+//   slice ANVIL_SLICE                 : anvil coverage [0,1], unused x3 -- NOT filled by the resampler: the
+//                                       renderer derives it from cumulonimbus cells, CAPE and the upper wind
 //
 // Altitudes are metres above the WGS84 ellipsoid, the same datum as the eye altitude (the model's
 // mean-sea-level heights are taken as ellipsoid heights; README "Datums" says why).
@@ -20,7 +22,8 @@
 #include "shaders/shared/bindings.h"
 
 #define WEATHER_WINDOW_HIGH_SLICE (2 * MAX_CLOUD_LAYERS)
-#define WEATHER_WINDOW_SLICES (2 * MAX_CLOUD_LAYERS + 2)
+#define WEATHER_WINDOW_ANVIL_SLICE (2 * MAX_CLOUD_LAYERS + 2)
+#define WEATHER_WINDOW_SLICES (2 * MAX_CLOUD_LAYERS + 3)
 
 // CIGI / WMO genera (DESIGN §3).
 #define CLOUD_TYPE_NONE 0

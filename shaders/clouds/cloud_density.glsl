@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: MIT
+// Cloud density at a point: weather window lookup, base shape, coverage, anvils, detail erosion.
+// Included by cloud passes after the FrameBlock and the texture bindings.
+
+// Detail erosion fades out with distance: beyond this the detail noise is finer than a pixel.
+const float kDetailFadeStartM = 20000.0f;
+const float kDetailFadeEndM = 40000.0f;
+// Extinction relative to cloudLook.x per genus: stratiform decks are optically thinner per metre.
+float genusDensityScale(int cloudType)
+{
+    if (cloudType == CLOUD_TYPE_STRATUS || cloudType == CLOUD_TYPE_ALTOSTRATUS)
+        return 0.6f;
+    if (cloudType == CLOUD_TYPE_STRATOCUMULUS || cloudType == CLOUD_TYPE_ALTOCUMULUS)
+        return 0.8f;
+    if (cloudType == CLOUD_TYPE_NIMBOSTRATUS || cloudType == CLOUD_TYPE_CUMULONIMBUS)
+        return 1.2f;
+    return 1.0f;
+}
+
+// Position on the weather window (azimuthal equidistant on the local sphere, metres east/north of the
+// eye) and the altitude of `p` (ENU metres from the eye), both free of float cancellation:
+// h = hc + (2 rc z + |p|^2) / (r + rc) instead of |p - centre| - R.
+vec2 weatherMapPosition(vec3 p, out float altitudeM)
+{
+    float rc = frame.earth.y;
+    vec3 pc = p + vec3(0.0f, 0.0f, rc);
+    float r = length(pc);
+    altitudeM = frame.cameraForward.w + (2.0f * rc * p.z + dot(p, p)) / (r + rc);
+    float horizontal = length(pc.xy);
+    if (horizontal < 1e-3f)
+        return vec2(0.0f);
+    float arcM = frame.earth.x * atan(horizontal, pc.z);
+    return pc.xy * (arcM / horizontal);
+}
+
+vec3 toNoiseFrame(vec3 p)
+{
+    return vec3(dot(frame.enuToEcef0.xyz, p), dot(frame.enuToEcef1.xyz, p), dot(frame.enuToEcef2.xyz, p));
+}
+
+struct WeatherLookup
+{
+    vec2 uv;
+    ivec2 texel;
+    bool inside;
+};
+
+WeatherLookup weatherLookup(vec2 mapPosM)
+{
+    WeatherLookup w;
+    w.uv = mapPosM / (2.0f * frame.earth.w) + 0.5f;
+    w.inside = all(greaterThanEqual(w.uv, vec2(0.0f))) && all(lessThan(w.uv, vec2(1.0f)));
+    w.texel = clamp(ivec2(w.uv * float(WEATHER_WINDOW_SIZE)), ivec2(0), ivec2(WEATHER_WINDOW_SIZE - 1));
+    return w;
+}
+
+// Base shape from the Perlin-Worley noise (Schneider: remap(R, lowFreqFBM - 1, 1, 0, 1)).
+float baseShapeAt(vec3 noisePos)
+{
+    vec4 n = textureLod(baseNoise, noisePos / frame.noiseScale.x, 0.0f);
+    float lowFreqFbm = n.y * 0.625f + n.z * 0.25f + n.w * 0.125f;
+    return saturate1(remapValue(n.x, lowFreqFbm - 1.0f, 1.0f, 0.0f, 1.0f));
+}
+
+float erodeAt(float density, vec3 noisePos, float hf, float distanceM)
+{
+    float fade = 1.0f - smoothstep(kDetailFadeStartM, kDetailFadeEndM, distanceM);
+    if (fade <= 0.0f || (frame.image.w & FRAME_FLAG_NO_DETAIL) != 0u)
+        return density;
+    // Curl-distorted coordinates, strongest at the base where clouds look torn by turbulence.
+    vec2 curl = textureLod(curlNoise, noisePos.xy / frame.noiseScale.z, 0.0f).xy;
+    vec3 q = noisePos + vec3(curl, -curl.x) * (1.0f - hf) * 0.12f * frame.noiseScale.y;
+    vec4 dn = textureLod(detailNoise, q / frame.noiseScale.y, 0.0f);
+    float detailFbm = dn.x * 0.625f + dn.y * 0.25f + dn.z * 0.125f;
+    return erodeWithDetail(density, detailFbm, hf, frame.cloudLook.y * fade);
+}
+
+struct DensitySample
+{
+    float density;   // relative density (multiplies cloudLook.x for the extinction per metre)
+    float rainMmH;   // precipitation rate of the densest layer here (mm/h), for rain darkening
+    float heightFraction;  // 0 at the base, 1 at the top of the layer that contributed most
+};
+
+DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
+{
+    DensitySample s;
+    s.density = 0.0f;
+    s.rainMmH = 0.0f;
+    s.heightFraction = 0.5f;
+    float h;
+    WeatherLookup w = weatherLookup(weatherMapPosition(p, h));
+    if (!w.inside || h < frame.shell.x || h > frame.shell.y)
+        return s;
+    vec3 noiseRel = toNoiseFrame(p);
+    float best = 0.0f;
+    for (int k = 0; k <= MAX_CLOUD_LAYERS; ++k)
+    {
+        vec4 range = frame.layerRangeM[k];
+        if (h < range.x || h > range.y)
+            continue;
+        bool anvilSlab = k == MAX_CLOUD_LAYERS;
+        vec4 layer = textureLod(weatherWindow, vec3(w.uv, float(anvilSlab ? WEATHER_WINDOW_ANVIL_SLICE : 2 * k)), 0.0f);
+        float coverage = layer.x;
+        float base = layer.y;
+        float top = layer.z;
+        if (coverage < 0.01f || top <= base || h < base || h > top)
+            continue;
+        float hf = (h - base) / (top - base);
+        int cloudType = anvilSlab ? CLOUD_TYPE_CUMULONIMBUS
+                                  : int(texelFetch(weatherWindow, ivec3(w.texel, 2 * k), 0).w + 0.5f);
+        vec3 shear = vec3(frame.layerShearM[k].xy * hf, 0.0f);
+        vec3 noisePos = toNoiseFrame(-shear) + noiseRel + frame.layerNoiseOffsetM[k].xyz;
+        float shape = baseShapeAt(noisePos);
+        float densityScale = genusDensityScale(cloudType);
+        if (anvilSlab)
+        {
+            // The anvil: a flat slab spreading downwind of the tower top, thinning at its edges.
+            shape *= smoothstep(0.0f, 0.35f, hf) * (1.0f - smoothstep(0.55f, 1.0f, hf));
+            densityScale *= 0.5f;
+        }
+        else
+        {
+            shape *= cloudHeightProfile(cloudType, hf);
+            if (cloudType == CLOUD_TYPE_CUMULONIMBUS)
+            {
+                shape = anvilShape(shape, hf, range.z);
+                densityScale *= anvilDensity(hf) * 1.5f;
+            }
+        }
+        float d = applyCoverage(shape, coverage);
+        if (d <= 0.0f)
+            continue;
+        if (!cheap)
+            d = erodeAt(d, noisePos, hf, distanceM);
+        d *= densityScale;
+        s.density += d;
+        if (d > best)
+        {
+            best = d;
+            s.heightFraction = hf;
+            if (!cheap && !anvilSlab)
+                s.rainMmH = textureLod(weatherWindow, vec3(w.uv, float(2 * k + 1)), 0.0f).z;
+        }
+    }
+    return s;
+}

@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+// Lighting of cloud samples and the view march. Included by cloud passes after cloud_density.glsl.
+
+// Offsets that spread the six light samples over a cone (unit-length-ish, fixed so frames agree).
+const vec3 kConeKernel[6] = vec3[](vec3(0.38f, -0.52f, 0.29f), vec3(-0.71f, 0.12f, -0.44f),
+                                  vec3(0.15f, 0.83f, -0.31f), vec3(-0.27f, -0.36f, 0.88f),
+                                  vec3(0.91f, 0.24f, -0.18f), vec3(-0.48f, 0.66f, 0.52f));
+
+// The light that shapes the clouds: the sun by day and in twilight down to -4 degrees, else the moon.
+bool moonIsKeyLight()
+{
+    return frame.sunDirection.z < -0.07f;
+}
+vec3 keyLightDirection()
+{
+    return moonIsKeyLight() ? frame.moonDirection.xyz : frame.sunDirection.xyz;
+}
+vec3 keyLightIrradiance()
+{
+    return moonIsKeyLight() ? frame.moonIrradiance.rgb : frame.sunIrradiance.rgb;
+}
+
+// Key light arriving at `p` through the atmosphere (transmittance LUT at the point's radius).
+vec3 keyLightAt(vec3 p, vec3 lightDir)
+{
+    vec3 pc = p + vec3(0.0f, 0.0f, frame.earth.y);
+    float r = length(pc);
+    float muLight = dot(pc, lightDir) / r;
+    return keyLightIrradiance() * sampleTransmittance(transmittanceLut, atmosphere, r, muLight);
+}
+
+// Optical depth toward the light: 6 samples in a widening cone, then one long sample at 3x the cone
+// length (Schneider 2015); cheap density once the path is already dense.
+float lightOpticalDepth(vec3 p, vec3 lightDir, float distanceM)
+{
+    float stepM = frame.phaseTerms.w;
+    float depth = 0.0f;
+    float t = 0.0f;
+    uint samples = min(frame.march.y, 6u);
+    for (uint i = 0u; i < samples; ++i)
+    {
+        float len = stepM * float(i + 1u);
+        t += len;
+        vec3 q = p + lightDir * (t - 0.5f * len) + kConeKernel[i] * (0.25f * t);
+        bool cheap = depth * frame.cloudLook.x > 0.3f;
+        depth += cloudDensity(q, cheap, distanceM).density * len;
+    }
+    vec3 far = p + lightDir * (3.0f * t);
+    depth += cloudDensity(far, true, distanceM).density * t;
+    return depth * frame.cloudLook.x;
+}
+
+// Light scattered toward the eye per unit incident radiance: multiple-scattering octaves (Wrenninge
+// 2013, Hillaire 2016) of a two-lobe phase function, with Beer-powder darkening seen away from the light.
+float multipleScattering(float opticalDepth, float cosTheta)
+{
+    float a = 1.0f;
+    float b = 1.0f;
+    float c = 1.0f;
+    float sum = 0.0f;
+    int octaves = int(frame.cloudLook.w);
+    for (int o = 0; o < octaves; ++o)
+    {
+        float phase = phaseTwoLobeHG(frame.phaseTerms.x * c, frame.phaseTerms.y * c, frame.phaseTerms.z, cosTheta);
+        sum += b * phase * exp(-opticalDepth * a);
+        a *= frame.lightingTerms.x;
+        b *= frame.lightingTerms.y;
+        c *= frame.lightingTerms.z;
+    }
+    float powderRatio = beerPowder(opticalDepth) / max(exp(-opticalDepth), 1e-6f);
+    float powderWeight = frame.lightingTerms.w * saturate1(0.5f - 0.5f * cosTheta);
+    return sum * mix(1.0f, powderRatio, powderWeight);
+}
+
+// Ambient light: sky above (brighter toward the top of the cloud) and ground bounce below.
+vec3 ambientLight(float heightFraction)
+{
+    vec3 sky = frame.ambientSky.rgb * mix(0.35f, 1.0f, heightFraction);
+    vec3 ground = frame.ambientGround.rgb * (frame.ambientSky.w / 3.14159265f) * (1.0f - heightFraction);
+    return frame.cloudLook.z * (sky + ground);
+}
+
+// March from tEnter to tExit: cheap samples with double steps until a cloud is hit, full samples inside,
+// back to cheap after 6 empty full samples; step length grows with distance; blue-noise start offset;
+// stop when the transmittance falls below 0.01 (DESIGN §3 "March").
+void marchClouds(vec3 dir, float tEnter, float tExit, ivec2 pixel, inout vec3 radiance, inout float transmittance,
+                 inout float depthWeighted, inout float depthWeight)
+{
+    vec3 lightDir = keyLightDirection();
+    float cosTheta = dot(dir, lightDir);
+    float thickness = frame.shell.y - frame.shell.x;
+    float baseStep = clamp(thickness / 64.0f, 30.0f, 250.0f);
+    const float growth = 0.015f;  // step = 1.5% of the distance far away
+    float jitter = texelFetch(blueNoise, pixel % BLUE_NOISE_SIZE, 0).x;
+    float t = tEnter + jitter * baseStep;
+    bool full = false;
+    int emptyFull = 0;
+    bool lit = false;
+    vec3 lightAtCloud = vec3(0.0f);
+    for (uint i = 0u; i < frame.march.x && t < tExit; ++i)
+    {
+        float dt = max(baseStep, t * growth);
+        vec3 p = dir * t;
+        if (!full)
+        {
+            if (cloudDensity(p, true, t).density > 0.0f)
+            {
+                full = true;
+                emptyFull = 0;
+                t = max(tEnter, t - dt);
+            }
+            else
+                t += 2.0f * dt;
+            continue;
+        }
+        DensitySample ds = cloudDensity(p, false, t);
+        if (ds.density <= 0.0f)
+        {
+            if (++emptyFull >= 6)
+                full = false;
+            t += dt;
+            continue;
+        }
+        emptyFull = 0;
+        float sigmaS = ds.density * frame.cloudLook.x;
+        // Rain makes bases dark: precipitation adds absorption near the base (DESIGN §3).
+        float rainAbsorption = saturate1(ds.rainMmH / 20.0f) * (1.0f - ds.heightFraction) * 1.5f;
+        float sigmaE = sigmaS * (1.0f + rainAbsorption);
+        if (!lit)
+        {
+            lightAtCloud = keyLightAt(p, lightDir);
+            lit = true;
+        }
+        float lightDepth = lightOpticalDepth(p, lightDir, t);
+        vec3 source = sigmaS * (lightAtCloud * multipleScattering(lightDepth, cosTheta) + ambientLight(ds.heightFraction));
+        radiance += transmittance * integrateScattering(source, sigmaE, dt);
+        float next = transmittance * exp(-sigmaE * dt);
+        depthWeighted += (transmittance - next) * t;
+        depthWeight += transmittance - next;
+        transmittance = next;
+        if (transmittance < 0.01f)
+        {
+            transmittance = 0.0f;
+            break;
+        }
+        t += dt;
+    }
+}

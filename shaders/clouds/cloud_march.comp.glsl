@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+// Volumetric cloud march (DESIGN §3): one invocation per pixel, front to back through the cloud shell,
+// cone-sampled key light, multiple-scattering octaves, ambient sky and ground light, then the 2D
+// high-cloud layer. Writes premultiplied cloud radiance + alpha (1 - transmittance) and the
+// transmittance-weighted cloud depth.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "shaders/shared/frame_params.h"
+#include "shaders/shared/weather_window.h"
+#include "shaders/shared/atmosphere_params.h"
+#include "shaders/lib/shell.glsl"
+#include "shaders/lib/cloud_shape.glsl"
+#include "shaders/lib/phase.glsl"
+#include "shaders/lib/atmosphere.glsl"
+
+layout(local_size_x = WORKGROUP_SIZE_2D, local_size_y = WORKGROUP_SIZE_2D) in;
+
+layout(binding = 0, std140) uniform FrameBlock { FrameParams frame; };
+layout(binding = 1, std140) uniform AtmosphereBlock { AtmosphereParams atmosphere; };
+layout(binding = 2) uniform sampler2DArray weatherWindow;
+layout(binding = 3) uniform sampler3D baseNoise;
+layout(binding = 4) uniform sampler3D detailNoise;
+layout(binding = 5) uniform sampler2D curlNoise;
+layout(binding = 6) uniform sampler2D blueNoise;
+layout(binding = 7) uniform sampler2D transmittanceLut;
+layout(binding = 8, rgba16f) uniform writeonly image2D cloudOut;
+layout(binding = 9, r32f) uniform writeonly image2D depthOut;
+
+#include "shaders/lib/atmosphere_sampling.glsl"
+#include "shaders/clouds/cloud_density.glsl"
+#include "shaders/clouds/cloud_lighting.glsl"
+#include "shaders/clouds/high_cloud.glsl"
+#include "shaders/clouds/view_ray.glsl"
+
+void main()
+{
+    ivec2 pixel = ivec2(permutedPixel(gl_GlobalInvocationID.xy));
+    if (pixel.x >= int(frame.image.x) || pixel.y >= int(frame.image.y))
+        return;
+
+    vec3 dir = viewRayDirection(vec2(pixel) + 0.5f);
+    float R = frame.earth.x;
+    float hc = frame.cameraForward.w;
+    float mu = dir.z;
+
+    vec3 radiance = vec3(0.0f);
+    float transmittance = 1.0f;
+    float depthWeighted = 0.0f;
+    float depthWeight = 0.0f;
+
+    float tEnter;
+    float tExit;
+    bool hit = rayShellInterval(mu, hc, frame.shell.x, frame.shell.y, R, frame.shell.z, tEnter, tExit);
+    bool highInFront = hc > frame.shell.w;
+    HighCloudSample high = sampleHighCloud(dir, mu, hc, R);
+    if (highInFront && high.alpha > 0.0f)
+    {
+        radiance += high.radiance;
+        transmittance *= 1.0f - high.alpha;
+        depthWeighted += high.alpha * high.distanceM;
+        depthWeight += high.alpha;
+    }
+
+    if (hit)
+        marchClouds(dir, tEnter, tExit, pixel, radiance, transmittance, depthWeighted, depthWeight);
+
+    if (!highInFront && high.alpha > 0.0f)
+    {
+        radiance += transmittance * high.radiance;
+        depthWeighted += transmittance * high.alpha * high.distanceM;
+        depthWeight += transmittance * high.alpha;
+        transmittance *= 1.0f - high.alpha;
+    }
+
+    float depth = depthWeight > 1e-4f ? depthWeighted / depthWeight : 0.0f;
+    imageStore(cloudOut, pixel, vec4(radiance, 1.0f - transmittance));
+    imageStore(depthOut, pixel, vec4(depth, 0.0f, 0.0f, 0.0f));
+}

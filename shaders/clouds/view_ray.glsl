@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: MIT
+// Pixel -> view ray, and the workgroup-row permutation (included by pass shaders after FrameBlock).
+
+// lavapipe hands each CPU thread a contiguous range of workgroups; with sky on top and ground below one
+// thread would get all the work. Interleaving rows of workgroups (0, n-1, 1, n-2, ...) balances it and
+// costs nothing on a GPU (shared/GPU.md, "Pitfalls").
+uvec2 permutedPixel(uvec2 globalId)
+{
+    uint groupsY = (frame.image.y + gl_WorkGroupSize.y - 1u) / gl_WorkGroupSize.y;
+    uint gy = gl_WorkGroupID.y;
+    uint py = (gy % 2u == 0u) ? gy / 2u : groupsY - 1u - gy / 2u;
+    return uvec2(globalId.x, py * gl_WorkGroupSize.y + gl_LocalInvocationID.y);
+}
+
+// Unit view direction (ENU) through the centre of `pixelCentre` (pixels, y down).
+vec3 viewRayDirection(vec2 pixelCentre)
+{
+    vec2 ndc = pixelCentre / vec2(frame.image.xy) * 2.0f - 1.0f;
+    vec3 d = frame.cameraForward.xyz + ndc.x * frame.cameraRight.w * frame.cameraRight.xyz -
+             ndc.y * frame.cameraUp.w * frame.cameraUp.xyz;
+    return normalize(d);
+}

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: MIT
+// Composite: sky (sky-view LUT + sun and moon disks) behind, clouds in front with aerial perspective,
+// then exposure, tone mapping and sRGB encoding for display.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "shaders/shared/frame_params.h"
+#include "shaders/shared/atmosphere_params.h"
+#include "shaders/lib/shell.glsl"
+#include "shaders/lib/atmosphere.glsl"
+#include "shaders/lib/phase.glsl"
+#include "shaders/lib/tonemap.glsl"
+
+layout(local_size_x = WORKGROUP_SIZE_2D, local_size_y = WORKGROUP_SIZE_2D) in;
+
+layout(binding = 0, std140) uniform FrameBlock { FrameParams frame; };
+layout(binding = 1, std140) uniform AtmosphereBlock { AtmosphereParams atmosphere; };
+layout(binding = 2) uniform sampler2D transmittanceLut;
+layout(binding = 3) uniform sampler2D multiscatterLut;
+layout(binding = 4) uniform sampler2D skyViewLut;
+layout(binding = 5, rgba16f) uniform readonly image2D cloudIn;
+layout(binding = 6, r32f) uniform readonly image2D depthIn;
+layout(binding = 7, rgba16f) uniform writeonly image2D linearOut;
+layout(binding = 8, rgba8) uniform writeonly image2D displayOut;
+
+#include "shaders/lib/atmosphere_sampling.glsl"
+#include "shaders/clouds/view_ray.glsl"
+
+void main()
+{
+    ivec2 pixel = ivec2(permutedPixel(gl_GlobalInvocationID.xy));
+    if (pixel.x >= int(frame.image.x) || pixel.y >= int(frame.image.y))
+        return;
+    vec3 dir = viewRayDirection(vec2(pixel) + 0.5f);
+    float rc = frame.earth.y;
+    float hc = frame.cameraForward.w;
+
+    vec3 sky = sampleSkyView(skyViewLut, atmosphere, dir, rc);
+    bool groundHit = rayGroundDistance(rc, dir.z, hc, frame.earth.x) > 0.0f;
+    if (!groundHit)
+    {
+        sky += sunDiskRadiance(transmittanceLut, atmosphere, dir, rc, frame.sunDirection.xyz, frame.sunIrradiance.rgb);
+        sky += moonDiskRadiance(transmittanceLut, atmosphere, dir, rc, frame.moonDirection.xyz, frame.sunDirection.xyz,
+                                frame.moonIrradiance.rgb);
+    }
+
+    vec4 cloud = imageLoad(cloudIn, pixel);
+    vec3 color = sky;
+    if (cloud.a > 0.0f)
+    {
+        float depth = imageLoad(depthIn, pixel).x;
+        vec3 inscatter;
+        vec3 transmittance;
+        aerialPerspective(transmittanceLut, multiscatterLut, atmosphere, vec3(0.0f, 0.0f, rc), dir, depth,
+                          frame.sunDirection.xyz, frame.sunIrradiance.rgb, frame.moonDirection.xyz,
+                          frame.moonIrradiance.rgb, inscatter, transmittance);
+        color = sky * (1.0f - cloud.a) + cloud.rgb * transmittance + inscatter * cloud.a;
+    }
+    imageStore(linearOut, pixel, vec4(color, 1.0f));
+    vec3 display = encodeSrgb(tonemapAces(color * frame.exposure.x));
+    imageStore(displayOut, pixel, vec4(display, 1.0f));
+}

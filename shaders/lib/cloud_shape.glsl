@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: MIT
+// Cloud shape and light-transport terms that do not touch textures (CPU-tested, STYLE §8).
+// Sources: Schneider 2015/2016 (remap, coverage, Beer-powder), Häggström 2018 (anvil shape and density
+// terms), Hillaire 2016 (energy-conserving integration), Wrenninge et al. 2013 (scattering octaves).
+
+float remapValue(float v, float lo0, float hi0, float lo1, float hi1)
+{
+    return lo1 + (v - lo0) * (hi1 - lo1) / (hi0 - lo0);
+}
+
+float saturate1(float v)
+{
+    return clamp(v, 0.0f, 1.0f);
+}
+
+// Vertical profile of each genus over the height fraction h in [0,1] between the layer's base and top:
+// (bottom ramp end, top fade start) of a smoothstep-up, smoothstep-down envelope, in [0,1].
+vec2 cloudTypeProfileShape(int cloudType)
+{
+    if (cloudType == CLOUD_TYPE_STRATUS)
+        return vec2(0.10f, 0.65f);
+    if (cloudType == CLOUD_TYPE_STRATOCUMULUS)
+        return vec2(0.15f, 0.55f);
+    if (cloudType == CLOUD_TYPE_CUMULUS)
+        return vec2(0.07f, 0.35f);
+    if (cloudType == CLOUD_TYPE_CUMULONIMBUS)
+        return vec2(0.04f, 0.80f);
+    if (cloudType == CLOUD_TYPE_NIMBOSTRATUS)
+        return vec2(0.05f, 0.75f);
+    if (cloudType == CLOUD_TYPE_ALTOSTRATUS)
+        return vec2(0.10f, 0.70f);
+    if (cloudType == CLOUD_TYPE_ALTOCUMULUS)
+        return vec2(0.20f, 0.50f);
+    return vec2(0.15f, 0.50f);  // cirrus-family genera in a volumetric layer: thin sheet
+}
+
+// Density envelope of a genus at height fraction h (0 at the base, 1 at the top); always in [0,1].
+float cloudHeightProfile(int cloudType, float h)
+{
+    vec2 shape = cloudTypeProfileShape(cloudType);
+    float up = smoothstep(0.0f, shape.x, h);
+    float down = 1.0f - smoothstep(shape.y, 1.0f, h);
+    return saturate1(up * down);
+}
+
+// Häggström's cumulonimbus shape: the coverage-shaped base value raised to an exponent that falls from
+// 1 to (1 - anvilAmount) between 65% and 95% of the height, so the top spreads into an anvil.
+float anvilShape(float shapeValue, float h, float anvilAmount)
+{
+    float exponent = saturate1(remapValue(h, 0.65f, 0.95f, 1.0f, 1.0f - anvilAmount));
+    return pow(saturate1(shapeValue), max(exponent, 0.05f));
+}
+
+// Häggström's density-height term for towers: dense low, thinning toward 0.2 at the top.
+float anvilDensity(float h)
+{
+    float bottom = saturate1(remapValue(h, 0.0f, 0.15f, 0.0f, 1.0f));
+    float top = mix(1.0f, 0.2f, smoothstep(0.3f, 1.0f, h));
+    return bottom * top;
+}
+
+// Schneider's coverage: remap(base, 1 - coverage, 1, 0, 1) * coverage.
+float applyCoverage(float baseShape, float coverage)
+{
+    if (coverage <= 0.0f)
+        return 0.0f;
+    return saturate1(remapValue(baseShape, 1.0f - coverage, 1.0f, 0.0f, 1.0f)) * coverage;
+}
+
+// Detail erosion: wispy (inverted detail) at the base, billowy at the top (Schneider 2015).
+float erodeWithDetail(float shape, float detailFbm, float h, float strength)
+{
+    float detail = mix(detailFbm, 1.0f - detailFbm, saturate1(h * 5.0f));
+    return saturate1(remapValue(shape, detail * strength, 1.0f, 0.0f, 1.0f));
+}
+
+// Beer-powder (Schneider 2015): E = 2 e^-d (1 - e^-2d) for optical depth d.
+float beerPowder(float opticalDepth)
+{
+    return 2.0f * exp(-opticalDepth) * (1.0f - exp(-2.0f * opticalDepth));
+}
+
+// Energy-conserving integration over one step (Hillaire 2016): the light scattered inside a segment
+// of length dt, extinction sigmaE, in-scattered source S (radiance per metre), seen through the
+// segment itself: S * (1 - e^-sigmaE dt) / sigmaE.
+vec3 integrateScattering(vec3 source, float sigmaE, float dt)
+{
+    if (sigmaE <= 1e-8f)
+        return source * dt;
+    return source * ((1.0f - exp(-sigmaE * dt)) / sigmaE);
+}

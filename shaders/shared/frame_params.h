@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+// Per-frame uniform block of the cloud and composite passes (std140: vec4/uvec4 members only).
+//
+// Frames of reference: the GPU works in the eye's local east-north-up frame (metres, origin at the
+// eye, z = ellipsoid normal at the eye). The earth around the eye is the osculating sphere of radius
+// earth.x whose centre is at (0, 0, -earth.y) (DESIGN §4: no raw ECEF in float). Noise is looked up in
+// earth-fixed axes so that clouds do not swim when the camera moves: noisePos = enuToEcef * p + layer
+// offset, where the offsets (eye ECEF minus wind drift, modulo the noise period) are computed in
+// double on the CPU.
+#ifndef SKY_SHARED_FRAME_PARAMS_H
+#define SKY_SHARED_FRAME_PARAMS_H
+#include "shaders/shared/bindings.h"
+
+struct FrameParams
+{
+    vec4 cameraRight;    // xyz: unit right axis (ENU); w: tan(fovY/2) * width/height
+    vec4 cameraUp;       // xyz: unit up axis (ENU); w: tan(fovY/2)
+    vec4 cameraForward;  // xyz: unit view axis (ENU); w: eye altitude above the ellipsoid (m)
+    vec4 earth;          // x: local earth radius R (m); y: R + eye altitude (m); z: window texel size (m); w: window half extent (m)
+    vec4 shell;          // x: lowest cloud base in the window (m); y: highest volumetric top (m); z: max march distance (m); w: high-cloud altitude (m)
+    vec4 sunDirection;   // xyz: unit direction to the sun (ENU); w: sun angular radius (rad)
+    vec4 sunIrradiance;  // rgb: solar irradiance at the top of the atmosphere (renderer units); w: unused
+    vec4 moonDirection;  // xyz: unit direction to the moon (ENU); w: unused
+    vec4 moonIrradiance; // rgb: moonlight irradiance at the top of the atmosphere (phase applied); w: unused
+    vec4 enuToEcef0;     // rows of the ENU -> earth-fixed rotation, used only for noise lookups
+    vec4 enuToEcef1;
+    vec4 enuToEcef2;
+    vec4 layerNoiseOffsetM[MAX_CLOUD_LAYERS + 1];  // xyz: noise-space offset per volumetric layer, then the high layer (m)
+    vec4 layerRangeM[MAX_CLOUD_LAYERS + 1];        // x: lowest base, y: highest top of the layer in the window (m); z: anvil amount [0,1]; w: unused
+    vec4 layerShearM[MAX_CLOUD_LAYERS + 1];        // xy: downwind displacement of the layer top relative to its base (ENU m); zw: unused
+    vec4 noiseScale;     // x: base noise period (m); y: detail noise period (m); z: curl noise period (m); w: high-cloud texture period (m)
+    vec4 cloudLook;      // x: extinction per metre at density 1; y: detail erosion strength; z: ambient strength; w: multiple-scattering octaves
+    vec4 lightingTerms;  // x: octave attenuation a; y: octave contribution b; z: octave eccentricity c; w: powder strength
+    vec4 phaseTerms;     // x: forward g; y: back g; z: forward weight; w: cone light step (m)
+    vec4 ambientSky;     // rgb: average sky radiance above the clouds; w: ground albedo
+    vec4 ambientGround;  // rgb: irradiance on the ground (for light bounced up into cloud bases); w: unused
+    vec4 exposure;       // x: exposure multiplier; y: animation time (s); z: unused; w: unused
+    uvec4 image;         // x: width; y: height; z: frame index; w: flags (FRAME_FLAG_*)
+    uvec4 march;         // x: max view steps; y: light samples (cone); z: unused; w: unused
+};
+
+// frame flags
+#define FRAME_FLAG_NO_DETAIL 1u      // skip detail erosion (tests of the base shape)
+#define FRAME_FLAG_NO_HIGH_CLOUD 2u  // skip the 2D cirrus layer
+
+#endif

@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+// The subcommands of the skyservice executable. Each returns the process exit code:
+//   0 success, 1 runtime failure (Vulkan, files), 2 bad command line or values, 3 unreadable weather.
+#pragma once
+
+#include "skyservice/render/render_types.h"
+#include "skyservice/vk/context.h"
+
+#include <string>
+
+namespace CLI
+{
+class App;
+}
+
+namespace sky
+{
+
+enum ExitCode : int
+{
+    kExitOk = 0,
+    kExitRuntime = 1,
+    kExitUsage = 2,
+    kExitWeather = 3,
+};
+
+/// Options shared by every command that renders.
+struct CommonRenderOptions
+{
+    std::string device;
+    bool validate = false;
+    std::string quality = "high";   ///< preset: high | medium | test
+    uint32_t seed = 1;
+    int steps = 0;                  ///< overrides the preset's view steps when > 0
+};
+
+struct RenderCommandOptions
+{
+    CommonRenderOptions common;
+    ViewRequest request;
+    std::string time = "2026-06-21T12:00:00Z";
+    std::string weather = "builtin";
+    std::string out = "render";
+    bool noDetail = false;
+    bool noHighCloud = false;
+};
+
+struct ShowcaseOptions
+{
+    CommonRenderOptions common;
+    std::string outDir = "out";
+    uint32_t width = 640;
+    uint32_t height = 360;
+};
+
+void addCommonOptions(CLI::App& app, CommonRenderOptions& o);
+/// Fills `q` from the preset name; returns false (and a message) for an unknown preset.
+bool qualityFromOptions(const CommonRenderOptions& o, QualitySettings& q, std::string& error);
+
+int runRenderCommand(const RenderCommandOptions& options);
+int runShowcaseCommand(const ShowcaseOptions& options);
+
+}  // namespace sky

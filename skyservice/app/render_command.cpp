@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: MIT
+#include "skyservice/app/commands.h"
+
+#include "skyservice/app/render_files.h"
+#include "skyservice/app/weather_source.h"
+#include "skyservice/render/renderer.h"
+#include "skyservice/sky/ephemeris.h"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+namespace sky
+{
+
+void addCommonOptions(CLI::App& app, CommonRenderOptions& o)
+{
+    app.add_option("--device", o.device, "Vulkan device: index or part of its name (default: best GPU, else CPU)");
+    app.add_flag("--validate", o.validate, "Enable the Vulkan validation layers");
+    app.add_option("--quality", o.quality, "Preset: high | medium | test")->check(CLI::IsMember({"high", "medium", "test"}));
+    app.add_option("--seed", o.seed, "Noise seed (same seed, same clouds)");
+    app.add_option("--steps", o.steps, "Maximum view samples per ray (overrides the preset)")->check(CLI::Range(8, 4096));
+}
+
+bool qualityFromOptions(const CommonRenderOptions& o, QualitySettings& q, std::string& error)
+{
+    q = QualitySettings{};
+    if (o.quality == "medium")
+    {
+        q.maxViewSteps = 96;
+        q.lightSamples = 5;
+    }
+    else if (o.quality == "test")
+    {
+        // Small and fast for lavapipe tests: fewer samples, same model.
+        q.maxViewSteps = 64;
+        q.lightSamples = 4;
+        q.octaves = 2;
+    }
+    else if (o.quality != "high")
+    {
+        error = "--quality " + o.quality + ": expected high, medium or test";
+        return false;
+    }
+    if (o.steps > 0)
+        q.maxViewSteps = uint32_t(o.steps);
+    q.noiseSeed = o.seed;
+    return true;
+}
+
+int runRenderCommand(const RenderCommandOptions& options)
+{
+    ViewRequest request = options.request;
+    std::string error;
+    if (!parseIso8601Utc(options.time, request.unixTimeS, error))
+    {
+        std::fprintf(stderr, "skyservice render: --time %s: %s\n", options.time.c_str(), error.c_str());
+        return kExitUsage;
+    }
+    if (!validateEyePose(request.pose, error))
+    {
+        std::fprintf(stderr, "skyservice render: %s\n", error.c_str());
+        return kExitUsage;
+    }
+    QualitySettings quality;
+    if (!qualityFromOptions(options.common, quality, error))
+    {
+        std::fprintf(stderr, "skyservice render: %s\n", error.c_str());
+        return kExitUsage;
+    }
+    quality.detail = !options.noDetail;
+    quality.highCloud = !options.noHighCloud;
+
+    WeatherSnapshot weather;
+    if (!loadWeatherSource(options.weather, request.unixTimeS, weather, error))
+    {
+        std::fprintf(stderr, "skyservice render: --weather %s: %s\n", options.weather.c_str(), error.c_str());
+        return kExitWeather;
+    }
+
+    Renderer renderer;
+    RendererOptions ro;
+    ro.context.deviceSelector = options.common.device;
+    ro.context.validation = options.common.validate;
+    ro.noiseSeed = options.common.seed;
+    SkyStatus status = createRenderer(renderer, ro);
+    if (!status.ok())
+    {
+        std::fprintf(stderr, "skyservice render: %s\n", status.message.c_str());
+        destroyRenderer(renderer);
+        return kExitRuntime;
+    }
+    setWeather(renderer, weather);
+    RenderResult result;
+    status = renderView(renderer, request, quality, result);
+    int code = kExitOk;
+    if (!status.ok())
+    {
+        std::fprintf(stderr, "skyservice render: %s\n", status.message.c_str());
+        code = status.result == VK_ERROR_INITIALIZATION_FAILED ? kExitUsage : kExitRuntime;
+    }
+    else
+    {
+        RenderFacts facts;
+        facts.weatherSource = options.weather;
+        facts.timeIso = formatIso8601Utc(request.unixTimeS);
+        facts.deviceName = renderer.ctx.deviceName;
+        facts.driver = renderer.ctx.driverInfo;
+        facts.quality = qualityToJson(quality);
+        if (!writeRenderFiles(options.out, request, result, facts, error))
+        {
+            std::fprintf(stderr, "skyservice render: %s\n", error.c_str());
+            code = kExitRuntime;
+        }
+        else
+            std::printf("wrote %s.png %s.exr %s.json (GPU %.1f ms)\n", options.out.c_str(), options.out.c_str(),
+                        options.out.c_str(), result.gpuMs.count("total") ? result.gpuMs.at("total") : 0.0);
+    }
+    if (options.common.validate && renderer.ctx.validationMessages.load() > 0)
+    {
+        std::fprintf(stderr, "skyservice render: %u validation messages\n", renderer.ctx.validationMessages.load());
+        code = kExitRuntime;
+    }
+    destroyRenderer(renderer);
+    return code;
+}
+
+}  // namespace sky

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: MIT
+#include "skyservice/app/render_files.h"
+
+#include "skyservice/output/image_files.h"
+
+#include <glm/gtc/packing.hpp>
+
+namespace sky
+{
+namespace
+{
+
+std::vector<float> unpackHalves(const std::vector<uint16_t>& halves)
+{
+    std::vector<float> out(halves.size());
+    for (size_t i = 0; i < halves.size(); ++i)
+        out[i] = glm::unpackHalf1x16(halves[i]);
+    return out;
+}
+
+}  // namespace
+
+nlohmann::json qualityToJson(const QualitySettings& q)
+{
+    return {{"maxViewSteps", q.maxViewSteps},
+            {"lightSamples", q.lightSamples},
+            {"octaves", q.octaves},
+            {"extinctionPerM", q.extinctionPerM},
+            {"detailErosion", q.detailErosion},
+            {"ambientStrength", q.ambientStrength},
+            {"powderStrength", q.powderStrength},
+            {"phaseForwardG", q.phaseForwardG},
+            {"phaseBackG", q.phaseBackG},
+            {"baseNoisePeriodM", q.baseNoisePeriodM},
+            {"detailNoisePeriodM", q.detailNoisePeriodM},
+            {"windowHalfExtentM", q.windowHalfExtentM},
+            {"maxDistanceM", q.maxDistanceM},
+            {"noiseSeed", q.noiseSeed},
+            {"detail", q.detail},
+            {"highCloud", q.highCloud}};
+}
+
+bool writeRenderFiles(const std::string& prefix, const ViewRequest& request, const RenderResult& result,
+                      const RenderFacts& facts, std::string& error)
+{
+    ImageRgba8 png;
+    png.width = result.width;
+    png.height = result.height;
+    png.pixels = result.displayRgba8;
+    if (!writePng(prefix + ".png", png, error))
+        return false;
+
+    std::vector<float> cloud = unpackHalves(result.cloudRgbaHalf);
+    std::vector<float> linear = unpackHalves(result.linearRgbaHalf);
+    std::vector<ExrChannel> channels = {
+        {"R", ExrPixelType::Half, cloud.data() + 0, 4},
+        {"G", ExrPixelType::Half, cloud.data() + 1, 4},
+        {"B", ExrPixelType::Half, cloud.data() + 2, 4},
+        {"A", ExrPixelType::Half, cloud.data() + 3, 4},
+        {"Z", ExrPixelType::Float, result.cloudDepthM.data(), 1},
+        {"sky.R", ExrPixelType::Half, linear.data() + 0, 4},
+        {"sky.G", ExrPixelType::Half, linear.data() + 1, 4},
+        {"sky.B", ExrPixelType::Half, linear.data() + 2, 4},
+    };
+    if (!writeExr(prefix + ".exr", result.width, result.height, channels, error))
+        return false;
+
+    nlohmann::json j;
+    j["view"] = {{"lat", request.pose.latDeg},         {"lon", request.pose.lonDeg},
+                 {"alt", request.pose.altitudeM},      {"heading", request.pose.headingDeg},
+                 {"pitch", request.pose.pitchDeg},     {"roll", request.pose.rollDeg},
+                 {"fov", request.fovYDeg},             {"width", request.width},
+                 {"height", request.height},           {"time", facts.timeIso}};
+    j["units"] = {{"lat", "degrees"}, {"lon", "degrees"}, {"alt", "metres above the WGS84 ellipsoid"},
+                  {"heading", "degrees clockwise from north"}, {"pitch", "degrees, + nose up"},
+                  {"roll", "degrees, + right wing down"}, {"fov", "vertical, degrees"}};
+    j["weather"] = facts.weatherSource;
+    j["sun"] = {{"azimuthDeg", result.sunAzimuthDeg}, {"elevationDeg", result.sunElevationDeg}};
+    j["moon"] = {{"azimuthDeg", result.moonAzimuthDeg},
+                 {"elevationDeg", result.moonElevationDeg},
+                 {"illuminatedFraction", result.moonIlluminatedFraction},
+                 {"isKeyLight", result.moonIsKeyLight}};
+    j["device"] = {{"name", facts.deviceName}, {"driver", facts.driver}};
+    j["timingsMs"] = result.gpuMs;
+    j["timingsMs"]["cpuSetup"] = result.cpuSetupMs;
+    j["exposure"] = result.exposure;
+    j["radianceUnits"] = "EXR values are pre-exposed: divide by `exposure` for W m^-2 sr^-1 nm^-1 at 680/550/440 nm";
+    j["quality"] = facts.quality;
+    if (!facts.caption.empty())
+        j["caption"] = facts.caption;
+    j["files"] = {{"png", "tone-mapped sRGB, sky and clouds"},
+                  {"exr", "R,G,B: premultiplied linear cloud radiance; A: 1 - cloud transmittance; Z: "
+                          "transmittance-weighted cloud distance (m, 0 where A = 0); sky.R/G/B: final linear frame"}};
+    return writeJsonAtomic(prefix + ".json", j, error);
+}
+
+}  // namespace sky

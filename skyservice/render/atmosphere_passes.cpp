@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+#include "skyservice/render/atmosphere_passes.h"
+
+#include "shaders/shared/atmosphere_params.h"
+#include "skyservice/sky/atmosphere.h"
+#include "skyservice/sky/atmosphere_reference.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace sky
+{
+namespace
+{
+
+// The LUTs depend on the ground radius; the osculating radius changes by ~21 km from equator to pole,
+// and by < 0.1% per km of it (atmosphere.h), so they are rebuilt when it moves by more than 1 km.
+constexpr double kLutRebuildRadiusM = 1000.0;
+
+glm::dvec3 toD(const glm::vec3& v) { return glm::dvec3(v.x, v.y, v.z); }
+
+AtmosphereParams frameAtmosphere(double radiusM, const SunMoon& sunMoon)
+{
+    AtmosphereParams p = makeEarthAtmosphere(radiusM);
+    p.radii.w = float(moonAngularRadiusRad(sunMoon.moon.distanceM));
+    return p;
+}
+
+}  // namespace
+
+SkyStatus createAtmosphereResources(Renderer& r)
+{
+    ImageDesc d;
+    d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    d.width = TRANSMITTANCE_LUT_WIDTH;
+    d.height = TRANSMITTANCE_LUT_HEIGHT;
+    SKY_TRY(createImage(r.ctx, r.memory, r.transmittanceLut, d, "transmittance LUT"));
+    d.width = d.height = MULTISCATTER_LUT_SIZE;
+    SKY_TRY(createImage(r.ctx, r.memory, r.multiscatterLut, d, "multiple-scattering LUT"));
+    d.width = SKY_VIEW_LUT_WIDTH;
+    d.height = SKY_VIEW_LUT_HEIGHT;
+    SKY_TRY(createImage(r.ctx, r.memory, r.skyViewLut, d, "sky-view LUT"));
+    SKY_TRY(createBuffer(r.ctx, r.memory, r.atmosphereUniforms, sizeof(AtmosphereParams),
+                         VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::HostVisible, "atmosphere uniforms"));
+    OneShot shot;
+    SKY_TRY(beginOneShot(r.ctx, shot));
+    for (Image* img : {&r.transmittanceLut, &r.multiscatterLut, &r.skyViewLut})
+        transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    return endOneShot(r.ctx, shot);
+}
+
+LightingEstimate estimateLighting(Renderer& r, const CameraFrame& camera, const SunMoon& sunMoon,
+                                  const WindowSummary& summary)
+{
+    LightingEstimate e;
+    const double R = camera.localEarthRadiusM;
+    if (std::fabs(r.cpuAtmosphereRadiusM - R) > kLutRebuildRadiusM)
+    {
+        r.cpuAtmosphere = createAtmosphereReference(makeEarthAtmosphere(R));
+        r.cpuAtmosphereRadiusM = R;
+    }
+    const AtmosphereParams& p = r.cpuAtmosphere.params;
+    e.sunIrradiance = toD(glm::vec3(p.solarIrradiance.x, p.solarIrradiance.y, p.solarIrradiance.z));
+    e.groundAlbedo = double(p.groundAlbedo.x);
+
+    // Sky radiance seen from the middle of the cloud layers, averaged over the upper hemisphere.
+    float cloudAltitudeM = 2000.0f;
+    for (const LayerSummary& l : summary.layers)
+        if (!l.empty())
+        {
+            cloudAltitudeM = 0.5f * (l.minBaseM + l.maxTopM);
+            break;
+        }
+    SkyViewPushConstants c;
+    std::memset(&c, 0, sizeof c);
+    glm::dvec3 moonIrr = e.sunIrradiance * moonIrradianceRelativeToSun(sunMoon.moonPhaseAngleDeg);
+    c.sunDirection = vec4(glm::vec3(sunMoon.sun.directionEnu), float(R) + cloudAltitudeM);
+    c.sunIrradiance = vec4(glm::vec3(e.sunIrradiance), 0.0f);
+    c.moonDirection = vec4(glm::vec3(sunMoon.moon.directionEnu), 0.0f);
+    c.moonIrradiance = vec4(glm::vec3(moonIrr), 0.0f);
+    c.flags = uvec4(0u);
+    glm::dvec3 sum(0.0);
+    int count = 0;
+    for (int row : {SKY_VIEW_LUT_HEIGHT / 10, SKY_VIEW_LUT_HEIGHT / 5, SKY_VIEW_LUT_HEIGHT / 3})
+        for (int col = 0; col < SKY_VIEW_LUT_WIDTH; col += SKY_VIEW_LUT_WIDTH / 8)
+        {
+            sum += toD(skyViewTexel(r.cpuAtmosphere, c, col, row));
+            ++count;
+        }
+    e.ambientSkyRadiance = sum / double(count);
+
+    // Irradiance on the ground: direct sun and moon through the atmosphere plus the sky (pi * radiance).
+    auto direct = [&](const glm::dvec3& dir, const glm::dvec3& irradiance) {
+        if (dir.z <= 0.0)
+            return glm::dvec3(0.0);
+        return irradiance * toD(sampleTransmittanceCpu(r.cpuAtmosphere, float(R), float(dir.z))) * dir.z;
+    };
+    e.groundIrradiance = direct(sunMoon.sun.directionEnu, e.sunIrradiance) +
+                         direct(sunMoon.moon.directionEnu, moonIrr) + M_PI * e.ambientSkyRadiance;
+
+    // Exposure: a white Lambertian surface in this light maps to ~1.2 before tone mapping. Below the
+    // floor (deep twilight, moonlight) the picture is allowed to go dark, as the eye sees it.
+    double whiteRadiance = glm::dot(e.groundIrradiance, glm::dvec3(0.2126, 0.7152, 0.0722)) / M_PI;
+    const double kNightFloorRadiance = 1e-5;
+    e.exposure = 1.2 / std::max(whiteRadiance, kNightFloorRadiance);
+    return e;
+}
+
+void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camera, const SunMoon& sunMoon,
+                      const FrameInputs& in)
+{
+    const double R = camera.localEarthRadiusM;
+    AtmosphereParams p = frameAtmosphere(R, sunMoon);
+    std::memcpy(r.atmosphereUniforms.mapped, &p, sizeof p);
+    if (std::fabs(r.atmosphereRadiusM - R) > kLutRebuildRadiusM)
+    {
+        dispatch(r.ctx, cmd, r.transmittanceProgram, TRANSMITTANCE_LUT_WIDTH, TRANSMITTANCE_LUT_HEIGHT, 1, nullptr, 0,
+                 {DescriptorInfo(r.atmosphereUniforms), DescriptorInfo(r.transmittanceLut)});
+        computeBarrier(cmd);
+        dispatch(r.ctx, cmd, r.multiscatterProgram, MULTISCATTER_LUT_SIZE, MULTISCATTER_LUT_SIZE, 1, nullptr, 0,
+                 {DescriptorInfo(r.atmosphereUniforms), DescriptorInfo(r.multiscatterLut),
+                  DescriptorInfo(r.transmittanceLut, r.linearClamp)});
+        computeBarrier(cmd);
+        r.atmosphereRadiusM = R;
+    }
+    SkyViewPushConstants c;
+    std::memset(&c, 0, sizeof c);
+    c.sunDirection = vec4(glm::vec3(sunMoon.sun.directionEnu), float(R + camera.eye.altitudeM));
+    c.sunIrradiance = vec4(glm::vec3(in.sunIrradiance), 0.0f);
+    c.moonDirection = vec4(glm::vec3(sunMoon.moon.directionEnu), 0.0f);
+    c.moonIrradiance =
+        vec4(glm::vec3(in.sunIrradiance * moonIrradianceRelativeToSun(sunMoon.moonPhaseAngleDeg)), 0.0f);
+    c.flags = uvec4(SKY_VIEW_FLAG_GROUND, 0u, 0u, 0u);
+    dispatch(r.ctx, cmd, r.skyViewProgram, SKY_VIEW_LUT_WIDTH, SKY_VIEW_LUT_HEIGHT, 1, c,
+             {DescriptorInfo(r.atmosphereUniforms), DescriptorInfo(r.skyViewLut),
+              DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.multiscatterLut, r.linearClamp)});
+}
+
+void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request)
+{
+    dispatch(r.ctx, cmd, r.compositeProgram, request.width, request.height, 1, nullptr, 0,
+             {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.atmosphereUniforms),
+              DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.multiscatterLut, r.linearClamp),
+              DescriptorInfo(r.skyViewLut, r.linearRepeat), DescriptorInfo(r.cloudImage), DescriptorInfo(r.depthImage),
+              DescriptorInfo(r.linearImage), DescriptorInfo(r.displayImage)});
+}
+
+}  // namespace sky

@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: MIT
+// Builds the per-frame uniform block (shaders/shared/frame_params.h) on the CPU, in double, from the
+// camera, the sun and moon, the weather window and the quality settings.
+#pragma once
+
+#include "shaders/shared/frame_params.h"
+#include "skyservice/render/render_types.h"
+#include "skyservice/render/window_analysis.h"
+#include "skyservice/sky/ephemeris.h"
+
+namespace sky
+{
+
+struct FrameInputs
+{
+    const CameraFrame* camera = nullptr;
+    const SunMoon* sunMoon = nullptr;
+    const WeatherWindow* window = nullptr;
+    const WindowSummary* summary = nullptr;
+    const ViewRequest* request = nullptr;
+    const QualitySettings* quality = nullptr;
+    double animationTimeS = 0;      ///< seconds since the weather's valid time (drives wind drift)
+    glm::dvec3 sunIrradiance{1.0};  ///< top-of-atmosphere solar irradiance (renderer units)
+    glm::dvec3 ambientSkyRadiance{0.0};   ///< mean sky radiance above the cloud layers
+    glm::dvec3 groundIrradiance{0.0};     ///< irradiance reaching the ground
+    double groundAlbedo = 0.3;
+    double exposure = 1.0;
+};
+
+FrameParams makeFrameParams(const FrameInputs& in);
+
+/// The noise offsets are taken modulo this period (m): every noise period must divide it (see
+/// validateNoisePeriods), so the offsets stay small in float and the clouds stay world-fixed.
+double noiseOffsetModulusM(const QualitySettings& quality);
+bool validateNoisePeriods(const QualitySettings& quality, std::string& error);
+
+}  // namespace sky

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+// What a render is asked for and what it returns.
+#pragma once
+
+#include "skyservice/earth/geodesy.h"
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace sky
+{
+
+/// Knobs of the cloud model and the march. Defaults are the published constants (DESIGN §3), tuned.
+struct QualitySettings
+{
+    uint32_t maxViewSteps = 160;     ///< view samples per ray at most
+    uint32_t lightSamples = 6;       ///< cone samples toward the light (plus one long sample)
+    uint32_t octaves = 3;            ///< multiple-scattering octaves (Wrenninge 2013)
+    double extinctionPerM = 0.045;   ///< cloud extinction at density 1 (1/m); ~20 m mean free path
+    double detailErosion = 0.35;     ///< strength of the detail-noise erosion
+    double ambientStrength = 1.0;    ///< multiplier on sky and ground ambient light
+    double octaveAttenuation = 0.5;  ///< a: extinction scale per octave
+    double octaveContribution = 0.5; ///< b: energy per octave
+    double octaveEccentricity = 0.5; ///< c: phase eccentricity scale per octave
+    double powderStrength = 0.6;     ///< weight of Beer-powder darkening seen away from the light
+    double phaseForwardG = 0.8;      ///< forward lobe of the two-lobe Henyey-Greenstein
+    double phaseBackG = -0.3;        ///< back lobe
+    double phaseForwardWeight = 0.7; ///< share of the forward lobe
+    double coneStepM = 70.0;         ///< first light step (m); step i is (i+1) times this
+    double baseNoisePeriodM = 12000.0;   ///< metres covered by one tile of the 128^3 base noise
+    double detailNoisePeriodM = 1500.0;  ///< one tile of the 32^3 detail noise
+    double curlNoisePeriodM = 6000.0;    ///< one tile of the curl noise
+    double highNoisePeriodM = 24000.0;   ///< one tile of the high-cloud texture
+    double windowHalfExtentM = 800000.0; ///< weather window half width (covers the horizon at 12 km)
+    double maxDistanceM = 700000.0;      ///< no cloud marched beyond this distance
+    uint32_t noiseSeed = 1;              ///< seed of every noise texture
+    bool detail = true;                  ///< detail erosion on
+    bool highCloud = true;               ///< cirrus layer on
+};
+
+/// One view to render.
+struct ViewRequest
+{
+    EyePose pose;
+    double fovYDeg = 60.0;           ///< vertical field of view (degrees)
+    uint32_t width = 640;
+    uint32_t height = 360;
+    int64_t unixTimeS = 0;           ///< UTC time of the view (s since 1970)
+};
+
+/// Pixels and facts of a finished render. Images are row-major, top row first.
+struct RenderResult
+{
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<uint16_t> cloudRgbaHalf;  ///< premultiplied cloud radiance + alpha (1 - transmittance), half floats
+    std::vector<float> cloudDepthM;       ///< transmittance-weighted cloud distance (m), 0 where alpha is 0
+    std::vector<uint16_t> linearRgbaHalf; ///< final linear radiance (sky + clouds), half floats
+    std::vector<uint8_t> displayRgba8;    ///< tone-mapped sRGB
+    std::map<std::string, double> gpuMs;  ///< GPU time per pass (ms)
+    double cpuSetupMs = 0;                ///< CPU time to prepare the frame (weather window etc.)
+    double sunAzimuthDeg = 0, sunElevationDeg = 0;
+    double moonAzimuthDeg = 0, moonElevationDeg = 0, moonIlluminatedFraction = 0;
+    double exposure = 1;
+    bool moonIsKeyLight = false;
+};
+
+}  // namespace sky

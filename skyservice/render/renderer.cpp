@@ -1,0 +1,291 @@
+// SPDX-License-Identifier: MIT
+#include "skyservice/render/renderer.h"
+
+#include "shaders/shared/frame_params.h"
+#include "shaders/shared/noise_params.h"
+#include "shaders/shared/weather_window.h"
+#include "skyservice/render/atmosphere_passes.h"
+#include "skyservice/render/frame_setup.h"
+#include "skyservice/sky/blue_noise.h"
+
+#include <chrono>
+#include <cstring>
+
+namespace sky
+{
+namespace
+{
+
+// Timestamp slots: one before the frame and one after each pass.
+enum TimestampSlot : uint32_t
+{
+    kTsStart,
+    kTsSkyView,
+    kTsClouds,
+    kTsComposite,
+    kTsCount
+};
+
+SkyStatus createSampler(const Context& ctx, VkFilter filter, VkSamplerAddressMode mode, VkSampler& out)
+{
+    VkSamplerCreateInfo info = {VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = filter;
+    info.minFilter = filter;
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = mode;
+    info.addressModeV = mode;
+    info.addressModeW = mode;
+    info.maxLod = 0.0f;
+    VK_TRY(vkCreateSampler(ctx.device, &info, nullptr, &out));
+    return SkyStatus::success();
+}
+
+SkyStatus generateNoise(Renderer& r, uint32_t seed)
+{
+    OneShot shot;
+    SKY_TRY(beginOneShot(r.ctx, shot));
+    vkCmdResetQueryPool(shot.cmd, r.timestamps, 0, kTsCount);
+    vkCmdWriteTimestamp(shot.cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r.timestamps, 0);
+    for (Image* img : {&r.baseNoise, &r.detailNoise, &r.curlNoise})
+        transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    NoisePush push = {seed, BASE_NOISE_SIZE, 0, 0};
+    dispatch(r.ctx, shot.cmd, r.baseNoiseProgram, BASE_NOISE_SIZE, BASE_NOISE_SIZE, BASE_NOISE_SIZE, push,
+             {DescriptorInfo(r.baseNoise)});
+    push.sizeTexels = DETAIL_NOISE_SIZE;
+    dispatch(r.ctx, shot.cmd, r.detailNoiseProgram, DETAIL_NOISE_SIZE, DETAIL_NOISE_SIZE, DETAIL_NOISE_SIZE, push,
+             {DescriptorInfo(r.detailNoise)});
+    push.sizeTexels = CURL_NOISE_SIZE;
+    dispatch(r.ctx, shot.cmd, r.curlNoiseProgram, CURL_NOISE_SIZE, CURL_NOISE_SIZE, 1, push,
+             {DescriptorInfo(r.curlNoise)});
+    computeBarrier(shot.cmd);
+    vkCmdWriteTimestamp(shot.cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, r.timestamps, 1);
+    SKY_TRY(endOneShot(r.ctx, shot));
+    uint64_t ts[2] = {0, 0};
+    if (r.ctx.timestampPeriodNs > 0 &&
+        vkGetQueryPoolResults(r.ctx.device, r.timestamps, 0, 2, sizeof ts, ts, sizeof(uint64_t),
+                              VK_QUERY_RESULT_64_BIT) == VK_SUCCESS)
+        r.noiseStartupMs = double(ts[1] - ts[0]) * r.ctx.timestampPeriodNs * 1e-6;
+
+    std::vector<uint8_t> blue = makeBlueNoise(BLUE_NOISE_SIZE, seed);
+    return uploadImage(r.ctx, r.memory, r.blueNoise, blue.data(), blue.size(), VK_IMAGE_LAYOUT_GENERAL);
+}
+
+SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height)
+{
+    if (r.cloudImage.image && r.cloudImage.extent.width == width && r.cloudImage.extent.height == height)
+        return SkyStatus::success();
+    VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize only: never in steady state
+    for (Image* img : {&r.cloudImage, &r.depthImage, &r.linearImage, &r.displayImage})
+        destroyImage(r.ctx, r.memory, *img);
+    ImageDesc d;
+    d.width = width;
+    d.height = height;
+    d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    SKY_TRY(createImage(r.ctx, r.memory, r.cloudImage, d, "cloud radiance"));
+    SKY_TRY(createImage(r.ctx, r.memory, r.linearImage, d, "linear frame"));
+    d.format = VK_FORMAT_R32_SFLOAT;
+    SKY_TRY(createImage(r.ctx, r.memory, r.depthImage, d, "cloud depth"));
+    d.format = VK_FORMAT_R8G8B8A8_UNORM;
+    d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+    SKY_TRY(createImage(r.ctx, r.memory, r.displayImage, d, "display frame"));
+    OneShot shot;
+    SKY_TRY(beginOneShot(r.ctx, shot));
+    for (Image* img : {&r.cloudImage, &r.depthImage, &r.linearImage, &r.displayImage})
+        transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    return endOneShot(r.ctx, shot);
+}
+
+SkyStatus checkRequest(const ViewRequest& req)
+{
+    std::string error;
+    if (!validateEyePose(req.pose, error))
+        return SkyStatus::failure(error, VK_ERROR_INITIALIZATION_FAILED);
+    if (req.width < 8 || req.height < 8 || req.width > 8192 || req.height > 8192)
+        return SkyStatus::failure("image size " + std::to_string(req.width) + "x" + std::to_string(req.height) +
+                                      " outside 8..8192",
+                                  VK_ERROR_INITIALIZATION_FAILED);
+    if (!(req.fovYDeg > 1.0 && req.fovYDeg < 170.0))
+        return SkyStatus::failure("vertical field of view " + std::to_string(req.fovYDeg) + " outside (1, 170) degrees",
+                                  VK_ERROR_INITIALIZATION_FAILED);
+    return SkyStatus::success();
+}
+
+}  // namespace
+
+SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
+{
+    SKY_TRY(createContext(r.ctx, options.context));
+    SKY_TRY(createSampler(r.ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT, r.linearRepeat));
+    SKY_TRY(createSampler(r.ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, r.linearClamp));
+    SKY_TRY(createSampler(r.ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_REPEAT, r.nearestRepeat));
+
+    VkQueryPoolCreateInfo queryInfo = {VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    queryInfo.queryCount = kTsCount;
+    VK_TRY(vkCreateQueryPool(r.ctx.device, &queryInfo, nullptr, &r.timestamps));
+
+    const std::pair<Program*, const char*> programs[] = {
+        {&r.baseNoiseProgram, "base_noise"},     {&r.detailNoiseProgram, "detail_noise"},
+        {&r.curlNoiseProgram, "curl_noise"},     {&r.transmittanceProgram, "transmittance_lut"},
+        {&r.multiscatterProgram, "multiscatter_lut"}, {&r.skyViewProgram, "sky_view_lut"},
+        {&r.cloudProgram, "cloud_march"},        {&r.compositeProgram, "composite"},
+    };
+    for (const auto& [program, name] : programs)
+        SKY_TRY(createProgram(r.ctx, *program, name));
+
+    ImageDesc d;
+    d.viewType = VK_IMAGE_VIEW_TYPE_3D;
+    d.format = VK_FORMAT_R8G8B8A8_UNORM;
+    d.width = d.height = d.depth = BASE_NOISE_SIZE;
+    SKY_TRY(createImage(r.ctx, r.memory, r.baseNoise, d, "base noise 128^3"));
+    d.width = d.height = d.depth = DETAIL_NOISE_SIZE;
+    SKY_TRY(createImage(r.ctx, r.memory, r.detailNoise, d, "detail noise 32^3"));
+    d = ImageDesc{};
+    d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    d.width = d.height = CURL_NOISE_SIZE;
+    SKY_TRY(createImage(r.ctx, r.memory, r.curlNoise, d, "curl noise"));
+    d.format = VK_FORMAT_R8_UNORM;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+    d.width = d.height = BLUE_NOISE_SIZE;
+    SKY_TRY(createImage(r.ctx, r.memory, r.blueNoise, d, "blue noise"));
+    d = ImageDesc{};
+    d.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+    d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    d.width = d.height = WEATHER_WINDOW_SIZE;
+    d.layers = WEATHER_WINDOW_SLICES;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+    SKY_TRY(createImage(r.ctx, r.memory, r.weatherWindowImage, d, "weather window"));
+
+    SKY_TRY(createBuffer(r.ctx, r.memory, r.frameUniforms, sizeof(FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                         MemoryUse::HostVisible, "frame uniforms"));
+    SKY_TRY(createAtmosphereResources(r));
+    SKY_TRY(generateNoise(r, options.noiseSeed));
+    return SkyStatus::success();
+}
+
+void destroyRenderer(Renderer& r)
+{
+    if (!r.ctx.device)
+    {
+        destroyContext(r.ctx);
+        return;
+    }
+    vkDeviceWaitIdle(r.ctx.device);  // shutdown only
+    for (Image* img : {&r.baseNoise, &r.detailNoise, &r.curlNoise, &r.blueNoise, &r.transmittanceLut,
+                       &r.multiscatterLut, &r.skyViewLut, &r.weatherWindowImage, &r.cloudImage, &r.depthImage,
+                       &r.linearImage, &r.displayImage})
+        destroyImage(r.ctx, r.memory, *img);
+    destroyBuffer(r.ctx, r.memory, r.frameUniforms);
+    destroyBuffer(r.ctx, r.memory, r.atmosphereUniforms);
+    for (Program* p : {&r.baseNoiseProgram, &r.detailNoiseProgram, &r.curlNoiseProgram, &r.transmittanceProgram,
+                       &r.multiscatterProgram, &r.skyViewProgram, &r.cloudProgram, &r.compositeProgram})
+        destroyProgram(r.ctx, *p);
+    for (VkSampler* s : {&r.linearRepeat, &r.linearClamp, &r.nearestRepeat})
+        if (*s)
+            vkDestroySampler(r.ctx.device, *s, nullptr), *s = VK_NULL_HANDLE;
+    if (r.timestamps)
+        vkDestroyQueryPool(r.ctx.device, r.timestamps, nullptr);
+    r.timestamps = VK_NULL_HANDLE;
+    destroyContext(r.ctx);
+}
+
+void setWeather(Renderer& r, const WeatherSnapshot& snapshot) { r.weather = snapshot; }
+
+SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySettings& quality, RenderResult& result)
+{
+    SKY_TRY(checkRequest(request));
+    std::string error;
+    if (!validateNoisePeriods(quality, error))
+        return SkyStatus::failure(error, VK_ERROR_INITIALIZATION_FAILED);
+    auto cpuStart = std::chrono::steady_clock::now();
+
+    CameraFrame camera = computeCameraFrame(request.pose);
+    SunMoon sunMoon = computeSunMoon(request.unixTimeS, camera.eye.latDeg, camera.eye.lonDeg, camera.eye.altitudeM);
+    resampleWeatherWindow(r.weather, camera.eye.latDeg, camera.eye.lonDeg, quality.windowHalfExtentM, r.window);
+    computeAnvils(r.window);
+    r.windowSummary = summarizeWindow(r.window);
+    SKY_TRY(uploadImage(r.ctx, r.memory, r.weatherWindowImage, r.window.texels.data(),
+                        r.window.texels.size() * sizeof(glm::vec4), VK_IMAGE_LAYOUT_GENERAL));
+    SKY_TRY(ensureOutputImages(r, request.width, request.height));
+
+    FrameInputs in;
+    in.camera = &camera;
+    in.sunMoon = &sunMoon;
+    in.window = &r.window;
+    in.summary = &r.windowSummary;
+    in.request = &request;
+    in.quality = &quality;
+    in.animationTimeS = double(request.unixTimeS - r.weather.validTimeUnixS);
+    LightingEstimate light = estimateLighting(r, camera, sunMoon, r.windowSummary);
+    // Pre-exposure: every light source is scaled by the exposure before it reaches the GPU, so that the
+    // half-float images hold values near 1 by day and by moonlight alike (a full-moon sky is ~1e-7
+    // W m^-2 sr^-1 nm^-1, below half precision). Linear outputs are divided by `exposure` for absolute units.
+    in.sunIrradiance = light.sunIrradiance * light.exposure;
+    in.ambientSkyRadiance = light.ambientSkyRadiance * light.exposure;
+    in.groundIrradiance = light.groundIrradiance * light.exposure;
+    in.groundAlbedo = light.groundAlbedo;
+    in.exposure = 1.0;
+    FrameParams params = makeFrameParams(in);
+    std::memcpy(r.frameUniforms.mapped, &params, sizeof params);
+    result.cpuSetupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
+
+    OneShot shot;
+    SKY_TRY(beginOneShot(r.ctx, shot));
+    VkCommandBuffer cmd = shot.cmd;
+    vkCmdResetQueryPool(cmd, r.timestamps, 0, kTsCount);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r.timestamps, kTsStart);
+    recordAtmosphere(r, cmd, camera, sunMoon, in);
+    computeBarrier(cmd);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsSkyView);
+
+    dispatch(r.ctx, cmd, r.cloudProgram, request.width, request.height, 1, nullptr, 0,
+             {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.atmosphereUniforms),
+              DescriptorInfo(r.weatherWindowImage, r.linearClamp), DescriptorInfo(r.baseNoise, r.linearRepeat),
+              DescriptorInfo(r.detailNoise, r.linearRepeat), DescriptorInfo(r.curlNoise, r.linearRepeat),
+              DescriptorInfo(r.blueNoise, r.nearestRepeat), DescriptorInfo(r.transmittanceLut, r.linearClamp),
+              DescriptorInfo(r.cloudImage), DescriptorInfo(r.depthImage)});
+    computeBarrier(cmd);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsClouds);
+    recordComposite(r, cmd, request);
+    computeBarrier(cmd);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsComposite);
+    SKY_TRY(endOneShot(r.ctx, shot));
+
+    uint64_t ts[kTsCount] = {};
+    result.gpuMs.clear();
+    if (r.ctx.timestampPeriodNs > 0 &&
+        vkGetQueryPoolResults(r.ctx.device, r.timestamps, 0, kTsCount, sizeof ts, ts, sizeof(uint64_t),
+                              VK_QUERY_RESULT_64_BIT) == VK_SUCCESS)
+    {
+        auto ms = [&](uint32_t a, uint32_t b) { return double(ts[b] - ts[a]) * r.ctx.timestampPeriodNs * 1e-6; };
+        result.gpuMs["sky"] = ms(kTsStart, kTsSkyView);
+        result.gpuMs["clouds"] = ms(kTsSkyView, kTsClouds);
+        result.gpuMs["composite"] = ms(kTsClouds, kTsComposite);
+        result.gpuMs["total"] = ms(kTsStart, kTsComposite);
+    }
+
+    std::vector<uint8_t> bytes;
+    result.width = request.width;
+    result.height = request.height;
+    SKY_TRY(readbackImage(r.ctx, r.memory, r.cloudImage, bytes));
+    result.cloudRgbaHalf.resize(bytes.size() / 2);
+    std::memcpy(result.cloudRgbaHalf.data(), bytes.data(), bytes.size());
+    SKY_TRY(readbackImage(r.ctx, r.memory, r.depthImage, bytes));
+    result.cloudDepthM.resize(bytes.size() / 4);
+    std::memcpy(result.cloudDepthM.data(), bytes.data(), bytes.size());
+    SKY_TRY(readbackImage(r.ctx, r.memory, r.linearImage, bytes));
+    result.linearRgbaHalf.resize(bytes.size() / 2);
+    std::memcpy(result.linearRgbaHalf.data(), bytes.data(), bytes.size());
+    SKY_TRY(readbackImage(r.ctx, r.memory, r.displayImage, result.displayRgba8));
+
+    result.sunAzimuthDeg = sunMoon.sun.azimuthDeg;
+    result.sunElevationDeg = sunMoon.sun.elevationDeg;
+    result.moonAzimuthDeg = sunMoon.moon.azimuthDeg;
+    result.moonElevationDeg = sunMoon.moon.elevationDeg;
+    result.moonIlluminatedFraction = sunMoon.moonIlluminatedFraction;
+    result.exposure = light.exposure;
+    result.moonIsKeyLight = sunMoon.sun.directionEnu.z < -0.07;
+    return SkyStatus::success();
+}
+
+}  // namespace sky

@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+// The headless renderer: owns the Vulkan context and every GPU resource, renders one view at a time.
+//
+// Usage:
+//   Renderer r;  createRenderer(r, options)  -> noise and atmosphere tables are built once
+//   setWeather(r, snapshot)                  -> the weather to draw (copied)
+//   renderView(r, request, settings, result) -> pixels back on the host
+//   destroyRenderer(r)
+// Every function that can fail at run time returns a SkyStatus naming what failed.
+#pragma once
+
+#include "skyservice/earth/weather_window.h"
+#include "skyservice/render/render_types.h"
+#include "skyservice/render/window_analysis.h"
+#include "skyservice/sky/atmosphere_reference.h"
+#include "skyservice/vk/programs.h"
+#include "weather_ingest/weather_snapshot.h"
+
+namespace sky
+{
+
+struct RendererOptions
+{
+    ContextOptions context;
+    uint32_t noiseSeed = 1;
+};
+
+struct Renderer
+{
+    Context ctx;
+    MemoryTracker memory;
+
+    Program baseNoiseProgram, detailNoiseProgram, curlNoiseProgram;
+    Program transmittanceProgram, multiscatterProgram, skyViewProgram;
+    Program cloudProgram, compositeProgram;
+
+    Image baseNoise, detailNoise, curlNoise, blueNoise;
+    Image transmittanceLut, multiscatterLut, skyViewLut;
+    Image weatherWindowImage;
+    Image cloudImage, depthImage, linearImage, displayImage;
+    Buffer frameUniforms, atmosphereUniforms;
+    VkSampler linearRepeat = VK_NULL_HANDLE, linearClamp = VK_NULL_HANDLE, nearestRepeat = VK_NULL_HANDLE;
+    VkQueryPool timestamps = VK_NULL_HANDLE;
+
+    WeatherSnapshot weather;
+    WeatherWindow window;
+    WindowSummary windowSummary;
+    double atmosphereRadiusM = 0;  ///< bottom radius the transmittance/multiscatter LUTs were built for
+    double noiseStartupMs = 0;     ///< GPU time to generate the noise textures
+    AtmosphereReference cpuAtmosphere;   ///< CPU copy of the atmosphere LUTs, for the lighting estimate
+    double cpuAtmosphereRadiusM = -1;    ///< ground radius cpuAtmosphere was built for
+};
+
+SkyStatus createRenderer(Renderer& r, const RendererOptions& options);
+void destroyRenderer(Renderer& r);
+
+/// Replaces the weather (copied). Takes effect at the next renderView.
+void setWeather(Renderer& r, const WeatherSnapshot& snapshot);
+
+/// Renders one view and reads the images back.
+SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySettings& quality, RenderResult& result);
+
+}  // namespace sky

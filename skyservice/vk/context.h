@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: MIT
+// Headless Vulkan compute context: instance, debug messenger, one device with a compute queue.
+// No surface, no window system (DESIGN §1; windows live only in client_demo/).
+#pragma once
+
+#include "skyservice/vk/check.h"
+
+#include <atomic>
+#include <string>
+#include <vulkan/vulkan.h>
+
+namespace sky
+{
+
+struct ContextOptions
+{
+    bool validation = false;        ///< enable VK_LAYER_KHRONOS_validation and count its messages
+    std::string deviceSelector;     ///< "" = best (discrete > integrated > virtual > CPU), a number, or a name substring
+    bool quiet = false;             ///< do not print the chosen device
+};
+
+/// Everything device-wide. Owned by the Service / renderer; destroyed with destroyContext().
+struct Context
+{
+    VkInstance instance = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+    VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    uint32_t queueFamily = 0;
+    VkPhysicalDeviceProperties properties = {};
+    VkPhysicalDeviceMemoryProperties memoryProperties = {};
+    double timestampPeriodNs = 0;   ///< 0 when the queue has no timestamps
+    bool debugUtils = false;
+    PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;  ///< VK_KHR_push_descriptor entry point
+    std::string deviceName;
+    std::string driverInfo;
+
+    /// Validation messages of severity warning or error seen so far (tests fail on any).
+    std::atomic<uint32_t> validationMessages{0};
+};
+
+/// Creates the instance and device. On failure returns a message such as "no Vulkan driver found"
+/// and leaves every handle in `ctx` null.
+SkyStatus createContext(Context& ctx, const ContextOptions& options);
+void destroyContext(Context& ctx);
+
+/// Gives a debug name to a Vulkan object (visible in validation messages); no-op without debug utils.
+void setObjectName(const Context& ctx, VkObjectType type, uint64_t handle, const char* name);
+
+}  // namespace sky

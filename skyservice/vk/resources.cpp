@@ -1,0 +1,297 @@
+// SPDX-License-Identifier: MIT
+#include "skyservice/vk/resources.h"
+
+#include <cstring>
+
+namespace sky
+{
+namespace
+{
+
+bool chooseMemoryType(const Context& ctx, uint32_t typeBits, VkMemoryPropertyFlags wanted, uint32_t& index)
+{
+    for (uint32_t i = 0; i < ctx.memoryProperties.memoryTypeCount; ++i)
+        if ((typeBits & (1u << i)) && (ctx.memoryProperties.memoryTypes[i].propertyFlags & wanted) == wanted)
+        {
+            index = i;
+            return true;
+        }
+    return false;
+}
+
+SkyStatus allocate(const Context& ctx, MemoryTracker& tracker, const VkMemoryRequirements& req, MemoryUse use,
+                   const char* name, VkDeviceMemory& memory)
+{
+    VkMemoryPropertyFlags wanted = use == MemoryUse::HostVisible
+                                       ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                       : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+    uint32_t type = 0;
+    if (!chooseMemoryType(ctx, req.memoryTypeBits, wanted, type))
+        return SkyStatus::failure(std::string("no suitable memory type for ") + name, VK_ERROR_OUT_OF_DEVICE_MEMORY);
+    VkMemoryAllocateInfo info = {VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    info.allocationSize = req.size;
+    info.memoryTypeIndex = type;
+    VkResult r = vkAllocateMemory(ctx.device, &info, nullptr, &memory);
+    if (r != VK_SUCCESS)
+    {
+        memory = VK_NULL_HANDLE;
+        return SkyStatus::failure(std::string("out of device memory allocating ") + std::to_string(req.size) +
+                                      " bytes for " + name + " (" + vkResultName(r) + ")",
+                                  r);
+    }
+    std::lock_guard<std::mutex> lock(tracker.mutex);
+    tracker.liveBytes[name] += req.size;
+    tracker.totalBytes += req.size;
+    tracker.peakBytes = std::max(tracker.peakBytes, tracker.totalBytes);
+    return SkyStatus::success();
+}
+
+void release(const Context& ctx, MemoryTracker& tracker, VkDeviceMemory& memory, VkDeviceSize size,
+             const std::string& name)
+{
+    if (!memory)
+        return;
+    vkFreeMemory(ctx.device, memory, nullptr);
+    memory = VK_NULL_HANDLE;
+    std::lock_guard<std::mutex> lock(tracker.mutex);
+    auto it = tracker.liveBytes.find(name);
+    if (it != tracker.liveBytes.end())
+    {
+        it->second -= std::min(it->second, size);
+        if (it->second == 0)
+            tracker.liveBytes.erase(it);
+    }
+    tracker.totalBytes -= std::min(tracker.totalBytes, size);
+}
+
+}  // namespace
+
+uint32_t formatBytes(VkFormat format)
+{
+    switch (format)
+    {
+    case VK_FORMAT_R8_UNORM:
+        return 1;
+    case VK_FORMAT_R8G8B8A8_UNORM:
+    case VK_FORMAT_R8G8B8A8_SRGB:
+    case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_R16G16_SFLOAT:
+        return 4;
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+    case VK_FORMAT_R32G32_SFLOAT:
+        return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+        return 16;
+    default:
+        return 0;
+    }
+}
+
+SkyStatus createBuffer(const Context& ctx, MemoryTracker& tracker, Buffer& out, VkDeviceSize size,
+                       VkBufferUsageFlags usage, MemoryUse use, const char* name)
+{
+    out = Buffer{};
+    VkBufferCreateInfo info = {VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = size;
+    info.usage = usage;
+    VK_TRY(vkCreateBuffer(ctx.device, &info, nullptr, &out.buffer));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(ctx.device, out.buffer, &req);
+    SkyStatus s = allocate(ctx, tracker, req, use, name, out.memory);
+    if (!s.ok())
+    {
+        vkDestroyBuffer(ctx.device, out.buffer, nullptr);
+        out = Buffer{};
+        return s;
+    }
+    VK_CHECK(vkBindBufferMemory(ctx.device, out.buffer, out.memory, 0));
+    if (use == MemoryUse::HostVisible)
+        VK_CHECK(vkMapMemory(ctx.device, out.memory, 0, VK_WHOLE_SIZE, 0, &out.mapped));
+    out.size = req.size;
+    out.name = name;
+    setObjectName(ctx, VK_OBJECT_TYPE_BUFFER, uint64_t(out.buffer), name);
+    return SkyStatus::success();
+}
+
+void destroyBuffer(const Context& ctx, MemoryTracker& tracker, Buffer& buffer)
+{
+    if (buffer.buffer)
+        vkDestroyBuffer(ctx.device, buffer.buffer, nullptr);
+    release(ctx, tracker, buffer.memory, buffer.size, buffer.name);
+    buffer = Buffer{};
+}
+
+SkyStatus createImage(const Context& ctx, MemoryTracker& tracker, Image& out, const ImageDesc& desc, const char* name)
+{
+    out = Image{};
+    VkImageCreateInfo info = {VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    info.imageType = desc.viewType == VK_IMAGE_VIEW_TYPE_3D ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
+    info.format = desc.format;
+    info.extent = {desc.width, desc.height, desc.viewType == VK_IMAGE_VIEW_TYPE_3D ? desc.depth : 1};
+    info.mipLevels = 1;
+    info.arrayLayers = desc.viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY ? desc.layers : 1;
+    info.samples = VK_SAMPLE_COUNT_1_BIT;
+    info.tiling = VK_IMAGE_TILING_OPTIMAL;
+    info.usage = desc.usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VK_TRY(vkCreateImage(ctx.device, &info, nullptr, &out.image));
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(ctx.device, out.image, &req);
+    SkyStatus s = allocate(ctx, tracker, req, MemoryUse::DeviceLocal, name, out.memory);
+    if (!s.ok())
+    {
+        vkDestroyImage(ctx.device, out.image, nullptr);
+        out = Image{};
+        return s;
+    }
+    VK_CHECK(vkBindImageMemory(ctx.device, out.image, out.memory, 0));
+
+    VkImageViewCreateInfo viewInfo = {VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    viewInfo.image = out.image;
+    viewInfo.viewType = desc.viewType;
+    viewInfo.format = desc.format;
+    viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, info.arrayLayers};
+    VK_CHECK(vkCreateImageView(ctx.device, &viewInfo, nullptr, &out.view));
+
+    out.format = desc.format;
+    out.viewType = desc.viewType;
+    out.extent = info.extent;
+    out.layers = info.arrayLayers;
+    out.bytes = req.size;
+    out.name = name;
+    setObjectName(ctx, VK_OBJECT_TYPE_IMAGE, uint64_t(out.image), name);
+    setObjectName(ctx, VK_OBJECT_TYPE_IMAGE_VIEW, uint64_t(out.view), name);
+    return SkyStatus::success();
+}
+
+void destroyImage(const Context& ctx, MemoryTracker& tracker, Image& image)
+{
+    if (image.view)
+        vkDestroyImageView(ctx.device, image.view, nullptr);
+    if (image.image)
+        vkDestroyImage(ctx.device, image.image, nullptr);
+    release(ctx, tracker, image.memory, image.bytes, image.name);
+    image = Image{};
+}
+
+void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to)
+{
+    VkImageMemoryBarrier2 barrier = {VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    barrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+    barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    barrier.oldLayout = from;
+    barrier.newLayout = to;
+    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.image = image.image;
+    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
+    VkDependencyInfo dep = {VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = 1;
+    dep.pImageMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+void computeBarrier(VkCommandBuffer cmd)
+{
+    VkMemoryBarrier2 barrier = {VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    barrier.srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    barrier.dstAccessMask =
+        VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT;
+    VkDependencyInfo dep = {VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+SkyStatus beginOneShot(const Context& ctx, OneShot& shot)
+{
+    VkCommandPoolCreateInfo poolInfo = {VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    poolInfo.queueFamilyIndex = ctx.queueFamily;
+    VK_TRY(vkCreateCommandPool(ctx.device, &poolInfo, nullptr, &shot.pool));
+    VkCommandBufferAllocateInfo alloc = {VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = shot.pool;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VK_CHECK(vkAllocateCommandBuffers(ctx.device, &alloc, &shot.cmd));
+    VkCommandBufferBeginInfo begin = {VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkBeginCommandBuffer(shot.cmd, &begin));
+    return SkyStatus::success();
+}
+
+SkyStatus endOneShot(const Context& ctx, OneShot& shot)
+{
+    VK_CHECK(vkEndCommandBuffer(shot.cmd));
+    VkFenceCreateInfo fenceInfo = {VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence fence = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateFence(ctx.device, &fenceInfo, nullptr, &fence));
+    VkSubmitInfo submit = {VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &shot.cmd;
+    VkResult r = vkQueueSubmit(ctx.queue, 1, &submit, fence);
+    if (r == VK_SUCCESS)
+        r = vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, UINT64_MAX);
+    vkDestroyFence(ctx.device, fence, nullptr);
+    vkDestroyCommandPool(ctx.device, shot.pool, nullptr);
+    shot = OneShot{};
+    if (r != VK_SUCCESS)
+        return SkyStatus::failure(std::string("GPU work failed: ") + vkResultName(r), r);
+    return SkyStatus::success();
+}
+
+SkyStatus uploadImage(const Context& ctx, MemoryTracker& tracker, Image& image, const void* data, size_t bytes,
+                      VkImageLayout finalLayout)
+{
+    Buffer staging;
+    SKY_TRY(createBuffer(ctx, tracker, staging, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostVisible,
+                         "staging upload"));
+    std::memcpy(staging.mapped, data, bytes);
+    OneShot shot;
+    SkyStatus s = beginOneShot(ctx, shot);
+    if (s.ok())
+    {
+        transitionImage(shot.cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        VkBufferImageCopy region = {};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, image.layers};
+        region.imageExtent = image.extent;
+        vkCmdCopyBufferToImage(shot.cmd, staging.buffer, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        transitionImage(shot.cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, finalLayout);
+        s = endOneShot(ctx, shot);
+    }
+    destroyBuffer(ctx, tracker, staging);
+    return s;
+}
+
+SkyStatus readbackImage(const Context& ctx, MemoryTracker& tracker, const Image& image, std::vector<uint8_t>& out)
+{
+    size_t bytes = size_t(image.extent.width) * image.extent.height * image.extent.depth * formatBytes(image.format);
+    Buffer staging;
+    SKY_TRY(createBuffer(ctx, tracker, staging, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostVisible,
+                         "staging readback"));
+    OneShot shot;
+    SkyStatus s = beginOneShot(ctx, shot);
+    if (s.ok())
+    {
+        transitionImage(shot.cmd, image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        VkBufferImageCopy region = {};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = image.extent;
+        vkCmdCopyImageToBuffer(shot.cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &region);
+        transitionImage(shot.cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+        s = endOneShot(ctx, shot);
+    }
+    if (s.ok())
+    {
+        out.resize(bytes);
+        std::memcpy(out.data(), staging.mapped, bytes);
+    }
+    destroyBuffer(ctx, tracker, staging);
+    return s;
+}
+
+}  // namespace sky

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: MIT
+// Buffers and images: plain structs plus create/destroy functions (STYLE §2). A handful of large
+// allocations, so plain vkAllocateMemory with one memory-type chooser; every allocation is tracked by
+// name and size in a MemoryTracker so that totals can be reported and leaks detected at shutdown.
+#pragma once
+
+#include "skyservice/vk/context.h"
+
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace sky
+{
+
+/// Device allocations by name (bytes), for status replies and the zero-at-shutdown check.
+struct MemoryTracker
+{
+    std::mutex mutex;
+    std::map<std::string, VkDeviceSize> liveBytes;
+    VkDeviceSize totalBytes = 0;
+    VkDeviceSize peakBytes = 0;
+};
+
+struct Buffer
+{
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    void* mapped = nullptr;  ///< non-null for host-visible buffers (persistently mapped)
+    VkDeviceSize size = 0;
+    std::string name;
+};
+
+struct Image
+{
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D;
+    VkExtent3D extent = {0, 0, 0};
+    uint32_t layers = 1;
+    VkDeviceSize bytes = 0;
+    std::string name;
+};
+
+enum class MemoryUse
+{
+    DeviceLocal,   ///< GPU only
+    HostVisible,   ///< mapped, coherent: uniforms, staging and readback
+};
+
+/// Creates a buffer. On failure returns the error and leaves `out` empty.
+SkyStatus createBuffer(const Context& ctx, MemoryTracker& tracker, Buffer& out, VkDeviceSize size,
+                       VkBufferUsageFlags usage, MemoryUse use, const char* name);
+void destroyBuffer(const Context& ctx, MemoryTracker& tracker, Buffer& buffer);
+
+struct ImageDesc
+{
+    VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D;  ///< 2D, 2D_ARRAY or 3D
+    VkFormat format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    uint32_t width = 1, height = 1, depth = 1;  ///< depth only for 3D
+    uint32_t layers = 1;                         ///< only for 2D_ARRAY
+    VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+};
+
+/// Creates an image and its view (layout UNDEFINED). On failure returns the error and leaves `out` empty.
+SkyStatus createImage(const Context& ctx, MemoryTracker& tracker, Image& out, const ImageDesc& desc, const char* name);
+void destroyImage(const Context& ctx, MemoryTracker& tracker, Image& image);
+
+/// Bytes per texel of the formats we use.
+uint32_t formatBytes(VkFormat format);
+
+/// Records a full-image layout transition (all mips, all layers) with a conservative compute barrier.
+void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to);
+/// A compute->compute memory barrier covering every image and buffer (our passes are few and large).
+void computeBarrier(VkCommandBuffer cmd);
+
+/// A one-shot command buffer submitted and waited for: start-up uploads and readbacks.
+struct OneShot
+{
+    VkCommandPool pool = VK_NULL_HANDLE;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+};
+SkyStatus beginOneShot(const Context& ctx, OneShot& shot);
+SkyStatus endOneShot(const Context& ctx, OneShot& shot);  ///< submits, waits, frees
+
+/// Copies host data into an image (whole image, every layer) through a staging buffer, and leaves the
+/// image in `finalLayout`.
+SkyStatus uploadImage(const Context& ctx, MemoryTracker& tracker, Image& image, const void* data, size_t bytes,
+                      VkImageLayout finalLayout);
+/// Copies a whole image (layer 0) back to the host. The image must be in GENERAL layout.
+SkyStatus readbackImage(const Context& ctx, MemoryTracker& tracker, const Image& image, std::vector<uint8_t>& out);
+
+}  // namespace sky

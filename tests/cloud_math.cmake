@@ -1,0 +1,4 @@
+# Cloud shader math compiled as C++ (cloud.*), and SPIR-V reflection (vk.*): CPU only.
+add_executable(test_cloud_math unit/test_cloud_math.cpp unit/test_reflection.cpp)
+target_link_libraries(test_cloud_math PRIVATE sky_renderer GTest::gtest_main sky_warnings)
+gtest_discover_tests(test_cloud_math TEST_PREFIX "cloud." DISCOVERY_TIMEOUT 30)

@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: MIT
+// GPU tests on the available Vulkan device (lavapipe in CI), validation on: a validation message fails
+// the test. Small images and the "test" quality preset; statistics that would fail if a feature broke.
+#include "shaders/shared/noise_params.h"
+#include "skyservice/render/renderer.h"
+#include "skyservice/sky/atmosphere.h"
+#include "skyservice/sky/builtin_weather.h"
+#include "skyservice/sky/ephemeris.h"
+#include "tests/gpu/scenes.h"
+
+#include <glm/gtc/packing.hpp>
+#include <gtest/gtest.h>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wfloat-conversion"
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wdouble-promotion"
+#pragma GCC diagnostic ignored "-Wshadow"
+namespace glsl
+{
+using namespace glm;
+#include "shaders/lib/noise.glsl"
+}  // namespace glsl
+#pragma GCC diagnostic pop
+
+using namespace sky;
+using namespace sky::testscenes;
+
+namespace
+{
+
+class GpuRender : public ::testing::Test
+{
+protected:
+    static Renderer* renderer;
+
+    static void SetUpTestSuite()
+    {
+        renderer = new Renderer;
+        RendererOptions options;
+        options.context.validation = true;
+        options.context.quiet = true;
+        options.noiseSeed = 7;
+        SkyStatus s = createRenderer(*renderer, options);
+        ASSERT_TRUE(s.ok()) << s.message;
+    }
+    static void TearDownTestSuite()
+    {
+        destroyRenderer(*renderer);
+        delete renderer;
+        renderer = nullptr;
+    }
+    void TearDown() override { EXPECT_EQ(renderer->ctx.validationMessages.load(), 0u) << "Vulkan validation messages"; }
+
+    RenderResult render(const WeatherSnapshot& weather, const ViewRequest& request, QualitySettings q = testQuality())
+    {
+        setWeather(*renderer, weather);
+        RenderResult result;
+        SkyStatus s = renderView(*renderer, request, q, result);
+        EXPECT_TRUE(s.ok()) << s.message;
+        return result;
+    }
+};
+Renderer* GpuRender::renderer = nullptr;
+
+}  // namespace
+
+TEST_F(GpuRender, ClearSkyHasNoCloudPixels)
+{
+    RenderResult r = render(clearSky(), lookUp(45.0, 7.0, 300.0, 30.0, "2026-06-21T12:00:00Z"));
+    ImageStats s = cloudStats(r);
+    EXPECT_EQ(s.cloudPixels, 0u);
+    EXPECT_LT(s.maxAlpha, 1e-3f);
+    EXPECT_TRUE(s.allFinite);
+}
+
+TEST_F(GpuRender, OvercastCoversTheSkyAboveTheHorizon)
+{
+    RenderResult r = render(uniformLayer(1.0f, CloudType::Stratus, 1000.0f, 1800.0f),
+                            lookUp(45.0, 7.0, 200.0, 40.0, "2026-06-21T12:00:00Z"));
+    ImageStats s = cloudStats(r);
+    EXPECT_GE(double(s.cloudPixels) / double(s.skyPixels), 0.95);
+}
+
+TEST_F(GpuRender, ScatteredCoverageGivesPartialCloud)
+{
+    RenderResult r = render(uniformLayer(0.3f, CloudType::Cumulus, 1200.0f, 3000.0f),
+                            lookUp(45.0, 7.0, 200.0, 40.0, "2026-06-21T12:00:00Z"));
+    ImageStats s = cloudStats(r);
+    double fraction = double(s.cloudPixels) / double(s.skyPixels);
+    EXPECT_GT(fraction, 0.05);
+    EXPECT_LT(fraction, 0.75);
+}
+
+TEST_F(GpuRender, SameInputsGiveSameBytes)
+{
+    WeatherSnapshot w = makeBuiltinWeather(0);
+    ViewRequest v = cumulonimbusView("2026-06-21T14:00:00Z");
+    RenderResult a = render(w, v);
+    RenderResult b = render(w, v);
+    EXPECT_EQ(a.displayRgba8, b.displayRgba8);
+    EXPECT_EQ(a.cloudRgbaHalf, b.cloudRgbaHalf);
+    EXPECT_EQ(a.cloudDepthM, b.cloudDepthM);
+}
+
+// Looking east at the built-in cumulonimbus: in the afternoon the sun is behind the eye and lights the
+// side we see; in the morning, at the same solar elevation, we see its shadow side.
+TEST_F(GpuRender, SunSideOfACloudIsBrighterThanItsShadowSide)
+{
+    WeatherSnapshot w = makeBuiltinWeather(0);
+    RenderResult lit = render(w, cumulonimbusView("2026-06-21T14:28:00Z"));
+    RenderResult shadow = render(w, cumulonimbusView("2026-06-21T08:28:00Z"));
+    ImageStats a = cloudStats(lit), b = cloudStats(shadow);
+    ASSERT_GT(a.cloudPixels, 200u);
+    ASSERT_GT(b.cloudPixels, 200u);
+    EXPECT_NEAR(lit.sunElevationDeg, shadow.sunElevationDeg, 1.0);
+    EXPECT_GT(a.meanCloudLuminance, 1.3 * b.meanCloudLuminance);
+}
+
+TEST_F(GpuRender, SunsetLightIsRedderThanNoonLight)
+{
+    WeatherSnapshot w = uniformLayer(0.9f, CloudType::Stratocumulus, 900.0f, 1700.0f);
+    int64_t sunset = timeOfSunElevation(45.5, 2.5, "2026-06-21T17:00:00Z", 3.0);
+    RenderResult noon = render(w, lookDown(45.5, 2.5, 3500.0, parseTime("2026-06-21T11:50:00Z")));
+    RenderResult dusk = render(w, lookDown(45.5, 2.5, 3500.0, sunset));
+    ImageStats n = cloudStats(noon), d = cloudStats(dusk);
+    ASSERT_GT(n.cloudPixels, 1000u);
+    ASSERT_GT(d.cloudPixels, 1000u);
+    EXPECT_GT(d.meanCloudRed / d.meanCloudBlue, 1.3 * (n.meanCloudRed / n.meanCloudBlue));
+}
+
+TEST_F(GpuRender, NightIsDarkMoonlitAndFinite)
+{
+    WeatherSnapshot w = uniformLayer(0.5f, CloudType::Cumulus, 1200.0f, 2800.0f);
+    RenderResult day = render(w, lookUp(45.0, 7.0, 200.0, 30.0, "2026-06-29T12:00:00Z"));
+    RenderResult night = render(w, lookUp(45.0, 7.0, 200.0, 30.0, "2026-06-29T23:30:00Z"));  // full moon
+    ImageStats n = cloudStats(night), d = cloudStats(day);
+    EXPECT_TRUE(n.allFinite);
+    EXPECT_TRUE(night.moonIsKeyLight);
+    EXPECT_GT(night.moonElevationDeg, 5.0);
+    EXPECT_LT(n.meanDisplayLuminance, 0.5 * d.meanDisplayLuminance);
+    EXPECT_GT(n.meanCloudLuminance, 0.0);  // moonlit, not black
+}
+
+// GPU against the CPU reference: the sky of a clear view equals the CPU-compiled atmosphere.
+TEST_F(GpuRender, ClearSkyMatchesCpuAtmosphere)
+{
+    ViewRequest v = lookUp(45.0, 7.0, 300.0, 20.0, "2026-06-21T09:00:00Z");
+    RenderResult r = render(clearSky(), v);
+    std::vector<SkyProbe> probes = cpuSkyProbes(*renderer, v, 12);
+    ASSERT_EQ(probes.size(), 12u);
+    for (const SkyProbe& p : probes)
+    {
+        size_t i = (size_t(p.y) * r.width + size_t(p.x)) * 4;
+        for (int c = 0; c < 3; ++c)
+        {
+            float gpu = glm::unpackHalf1x16(r.linearRgbaHalf[i + size_t(c)]);
+            float cpu = p.radiance[c] * float(r.exposure);
+            EXPECT_NEAR(gpu, cpu, 0.03f * cpu + 1e-4f) << "pixel " << p.x << "," << p.y;
+        }
+    }
+}
+
+// GPU against the CPU reference: the base noise texture equals shaders/lib/noise.glsl run as C++.
+TEST_F(GpuRender, BaseNoiseMatchesCpuCompiledShaderMath)
+{
+    std::vector<uint8_t> texels;
+    SkyStatus s = readbackImage(renderer->ctx, renderer->memory, renderer->baseNoise, texels);
+    ASSERT_TRUE(s.ok()) << s.message;
+    ASSERT_EQ(texels.size(), size_t(BASE_NOISE_SIZE) * BASE_NOISE_SIZE * BASE_NOISE_SIZE * 4);
+    for (uint32_t k = 0; k < 40; ++k)
+    {
+        glm::uvec3 t((k * 37u) % BASE_NOISE_SIZE, (k * 91u + 5u) % BASE_NOISE_SIZE, (k * 53u + 11u) % BASE_NOISE_SIZE);
+        glm::vec4 cpu = glsl::baseNoiseTexel(t, BASE_NOISE_SIZE, 7u);
+        size_t i = ((size_t(t.z) * BASE_NOISE_SIZE + t.y) * BASE_NOISE_SIZE + t.x) * 4;
+        for (int c = 0; c < 4; ++c)
+            EXPECT_NEAR(float(texels[i + size_t(c)]) / 255.0f, cpu[c], 1.5f / 255.0f) << "texel " << k << " ch " << c;
+    }
+}

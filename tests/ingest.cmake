@@ -1,0 +1,26 @@
+# Tests of weather_ingest/ (issue 3). Every test name starts with "ingest.".
+set(SKY_INGEST_TEST_DIR ${CMAKE_CURRENT_LIST_DIR}/ingest)
+
+add_executable(ingest_weather_tests ${SKY_INGEST_TEST_DIR}/snapshot_file_test.cpp
+               ${SKY_INGEST_TEST_DIR}/weather_timeline_test.cpp)
+target_link_libraries(ingest_weather_tests PRIVATE sky_weather GTest::gtest_main sky_warnings)
+gtest_discover_tests(ingest_weather_tests TEST_PREFIX "ingest." DISCOVERY_TIMEOUT 30)
+
+if(TARGET sky_ingest)
+    add_executable(ingest_decoder_tests
+        ${SKY_INGEST_TEST_DIR}/grib_ingest_test.cpp
+        ${SKY_INGEST_TEST_DIR}/bad_input_test.cpp
+        ${SKY_INGEST_TEST_DIR}/wrf_ingest_test.cpp)
+    target_link_libraries(ingest_decoder_tests PRIVATE sky_ingest sky_netcdf GTest::gtest_main sky_warnings)
+    target_compile_definitions(ingest_decoder_tests PRIVATE SKY_SHARED_DIR="${SKY_SHARED_DIR}")
+    gtest_discover_tests(ingest_decoder_tests TEST_PREFIX "ingest." DISCOVERY_TIMEOUT 30)
+endif()
+
+if(TARGET sky-ingest)
+    foreach(case info-gfs info-wrf convert-gfs convert-wrf empty png truncated netcdf-unrelated missing usage check-bad)
+        add_test(NAME ingest.cli.${case}
+                 COMMAND bash ${SKY_INGEST_TEST_DIR}/cli_test.sh ${case} $<TARGET_FILE:sky-ingest> ${SKY_SHARED_DIR}
+                         ${CMAKE_CURRENT_BINARY_DIR}/ingest-cli)
+        set_tests_properties(ingest.cli.${case} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 60)
+    endforeach()
+endif()

@@ -1,0 +1,231 @@
+// SPDX-License-Identifier: MIT
+// Every bad input of issue 3 gets a typed error with a clear message (and, through the CLI, a non-zero
+// exit and no output file: tests/ingest/cli_test.sh).
+#include "weather_ingest/grib_fields.h"
+#include "weather_ingest/ingest.h"
+#include "weather_ingest/ingest_error.h"
+
+#include "grib_fixtures.h"
+#include "snapshot_test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <netcdf.h>
+
+#include <cmath>
+
+namespace sky
+{
+namespace
+{
+
+struct Outcome
+{
+    bool failed = false;
+    IngestErrorKind kind = IngestErrorKind::Io;
+    std::string message;
+    std::vector<std::string> warnings;
+};
+
+Outcome convert(const std::string& path, bool lenient = false)
+{
+    Outcome o;
+    try
+    {
+        MappingOptions options;
+        options.lenient = lenient;
+        o.warnings = convertFiles({path}, options, {}).warnings;
+    }
+    catch (const IngestError& e)
+    {
+        o.failed = true;
+        o.kind = e.kind();
+        o.message = e.what();
+    }
+    return o;
+}
+
+std::string writeFixture(const std::string& name, const std::vector<GribOutField>& fields)
+{
+    const std::string path = test::tempPath(name);
+    writeGribFile(path, fields);
+    return path;
+}
+
+TEST(BadInput, ZeroLengthFile)
+{
+    const std::string path = test::tempPath("empty.grib2");
+    test::writeBytes(path, {});
+    const Outcome o = convert(path);
+    ASSERT_TRUE(o.failed);
+    EXPECT_EQ(o.kind, IngestErrorKind::NotRecognized);
+    EXPECT_NE(o.message.find("empty file"), std::string::npos) << o.message;
+}
+
+TEST(BadInput, PngRenamedGrib2)
+{
+    const std::string path = test::tempPath("image.grib2");
+    std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
+    png.resize(300, 0x42);
+    test::writeBytes(path, png);
+    const Outcome o = convert(path);
+    ASSERT_TRUE(o.failed);
+    EXPECT_EQ(o.kind, IngestErrorKind::NotRecognized);
+    EXPECT_NE(o.message.find("PNG"), std::string::npos) << o.message;
+    EXPECT_NE(o.message.find(path), std::string::npos);
+}
+
+TEST(BadInput, TruncatedGribNamesTheMessage)
+{
+    const std::string full = writeFixture("full.grib2", test::gfsLikeFields(test::smallGlobalGrid()));
+    std::vector<uint8_t> bytes = test::readBytes(full);
+    for (const double keep : {0.55, 0.97})  // not on a message boundary
+    {
+        const std::string path = test::tempPath("cut.grib2");
+        test::writeBytes(path, {bytes.begin(), bytes.begin() + long(double(bytes.size()) * keep)});
+        const Outcome o = convert(path);
+        ASSERT_TRUE(o.failed) << keep;
+        EXPECT_EQ(o.kind, IngestErrorKind::Corrupt) << o.message;
+        EXPECT_NE(o.message.find("message "), std::string::npos) << o.message;
+    }
+}
+
+TEST(BadInput, CoverageOutside0To100Percent)
+{
+    const LatLonGrid g = test::smallGlobalGrid();
+    std::vector<GribOutField> f = test::gfsLikeFields(g);
+    f[1].values[7] = 130;  // middle cloud cover 130 %
+    const std::string path = writeFixture("cover.grib2", f);
+    const Outcome o = convert(path);
+    ASSERT_TRUE(o.failed);
+    EXPECT_EQ(o.kind, IngestErrorKind::BadValues);
+    EXPECT_NE(o.message.find("outside [0, 100] %"), std::string::npos) << o.message;
+    EXPECT_NE(o.message.find("tcc/middleCloudLayer"), std::string::npos) << o.message;
+    const Outcome lenient = convert(path, true);
+    EXPECT_FALSE(lenient.failed) << lenient.message;
+    ASSERT_EQ(lenient.warnings.size(), 1u);
+    EXPECT_NE(lenient.warnings[0].find("clamped"), std::string::npos);
+}
+
+TEST(BadInput, CloudBaseAboveTop)
+{
+    std::vector<GribOutField> f = test::gfsLikeFields(test::smallGlobalGrid());
+    f[4].values[3] = 50000;  // low cloud bottom at 500 hPa, top at 800 hPa
+    const Outcome o = convert(writeFixture("basetop.grib2", f));
+    ASSERT_TRUE(o.failed);
+    EXPECT_EQ(o.kind, IngestErrorKind::BadValues);
+    EXPECT_NE(o.message.find("base above cloud top"), std::string::npos) << o.message;
+}
+
+TEST(BadInput, NanThatIsNotAMissingValue)
+{
+    std::vector<GribOutField> f = test::gfsLikeFields(test::smallGlobalGrid());
+    f[0].packingType = "grid_ieee";
+    f[0].bitsPerValue = 32;
+    f[0].nanAsValue = true;
+    f[0].values[5] = NAN;
+    std::string path;
+    try
+    {
+        path = writeFixture("nan.grib2", f);
+    }
+    catch (const IngestError& e)
+    {
+        GTEST_SKIP() << "this ecCodes refuses to encode NaN: " << e.what();
+    }
+    const Outcome o = convert(path);
+    ASSERT_TRUE(o.failed);
+    EXPECT_EQ(o.kind, IngestErrorKind::BadValues);
+    EXPECT_NE(o.message.find("NaN"), std::string::npos) << o.message;
+}
+
+TEST(BadInput, ReducedGaussianGridIsRefusedByName)
+{
+    GribOutField f;
+    f.sample = "reduced_gg_pl_32_grib2";
+    const std::string path = test::tempPath("gg.grib2");
+    f.keys = {{"centre", "kwbc"}, {"typeOfLevel", "lowCloudLayer"}, {"shortName", "tcc"}};
+    writeGribFile(path, {f});  // empty grid: the sample's reduced Gaussian grid stays
+    GribFile file(path);
+    GribMessage m;
+    ASSERT_TRUE(file.next(m));
+    if (m.info().gridType == "regular_ll")
+        GTEST_SKIP() << "ecCodes turned the sample into regular_ll";
+    const Outcome o = convert(path);
+    ASSERT_TRUE(o.failed);
+    EXPECT_EQ(o.kind, IngestErrorKind::UnsupportedGrid);
+    EXPECT_NE(o.message.find("reduced_gg"), std::string::npos) << o.message;
+}
+
+TEST(BadInput, AbsurdGridSizeIsRefusedBeforeDecoding)
+{
+    const std::string path = writeFixture("big.grib2", test::gfsLikeFields(test::smallGlobalGrid()));
+    GribFile file(path);
+    try
+    {
+        readGribRecords(file, 100, {});  // a limit below the grid's 342 points
+        FAIL() << "no error";
+    }
+    catch (const IngestError& e)
+    {
+        EXPECT_EQ(e.kind(), IngestErrorKind::TooLarge);
+        EXPECT_NE(std::string(e.what()).find("exceeds"), std::string::npos) << e.what();
+    }
+}
+
+TEST(BadInput, FieldsOnDifferentGrids)
+{
+    std::vector<GribOutField> f = test::gfsLikeFields(test::smallGlobalGrid());
+    LatLonGrid other = test::smallGlobalGrid();
+    other.nLon = 9;
+    other.dLonDeg = 40;
+    f[2].grid = other;
+    f[2].values.assign(other.cellCount(), 10);
+    const Outcome o = convert(writeFixture("mixed.grib2", f));
+    ASSERT_TRUE(o.failed);
+    EXPECT_EQ(o.kind, IngestErrorKind::UnsupportedGrid);
+}
+
+TEST(BadInput, GribWithoutCloudFields)
+{
+    const LatLonGrid g = test::smallGlobalGrid();
+    const Outcome o = convert(writeFixture("nocloud.grib2", {test::levelField(g, "gh", 500, 5500)}));
+    ASSERT_TRUE(o.failed);
+    EXPECT_EQ(o.kind, IngestErrorKind::MissingFields);
+    EXPECT_NE(o.message.find("no cloud cover"), std::string::npos);
+}
+
+TEST(BadInput, NetCdfWithNoneOfTheNeededVariables)
+{
+    const std::string path = test::tempPath("other.nc");
+    int id = 0, dim = 0, var = 0;
+    ASSERT_EQ(nc_create(path.c_str(), NC_CLOBBER, &id), NC_NOERR);
+    ASSERT_EQ(nc_def_dim(id, "x", 4, &dim), NC_NOERR);
+    ASSERT_EQ(nc_def_var(id, "temperature", NC_FLOAT, 1, &dim, &var), NC_NOERR);
+    ASSERT_EQ(nc_enddef(id), NC_NOERR);
+    const float t[4] = {1, 2, 3, 4};
+    ASSERT_EQ(nc_put_var_float(id, var, t), NC_NOERR);
+    ASSERT_EQ(nc_close(id), NC_NOERR);
+    const Outcome o = convert(path);
+    ASSERT_TRUE(o.failed);
+    EXPECT_EQ(o.kind, IngestErrorKind::MissingFields);
+    EXPECT_NE(o.message.find("none of the variables"), std::string::npos) << o.message;
+    // A truncated NetCDF is corrupt, not a crash.
+    const std::vector<uint8_t> bytes = test::readBytes(path);
+    const std::string cut = test::tempPath("cut.nc");
+    test::writeBytes(cut, {bytes.begin(), bytes.begin() + 20});
+    const Outcome c = convert(cut);
+    ASSERT_TRUE(c.failed);
+    EXPECT_NE(c.message.find(cut), std::string::npos);
+}
+
+TEST(BadInput, MissingFileIsAnIoError)
+{
+    const Outcome o = convert("/nonexistent/file.grib2");
+    ASSERT_TRUE(o.failed);
+    EXPECT_EQ(o.kind, IngestErrorKind::Io);
+    EXPECT_EQ(exitCodeFor(o.kind), 3);
+}
+
+}  // namespace
+}  // namespace sky

@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: MIT
+// Cloud shader math (shaders/lib/shell.glsl, cloud_shape.glsl) compiled as C++ and checked against
+// analytic cases and a double-precision reference (STYLE §8, §16).
+#include "shaders/shared/weather_window.h"
+
+#include <gtest/gtest.h>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wfloat-conversion"
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wdouble-promotion"
+namespace glsl
+{
+using namespace glm;
+#include "shaders/lib/shell.glsl"
+#include "shaders/lib/cloud_shape.glsl"
+}  // namespace glsl
+#pragma GCC diagnostic pop
+
+#include <cmath>
+
+namespace
+{
+
+// Double-precision roots of |o + t d|^2 = (R + hs)^2 for the eye at (0, 0, R + hc).
+bool referenceRoots(double R, double hc, double hs, double mu, double& tNear, double& tFar)
+{
+    long double rc = R + hc, rs = R + hs;
+    long double b = rc * mu;
+    long double c = rc * rc - rs * rs;
+    long double disc = b * b - c;
+    if (disc < 0)
+        return false;
+    long double s = std::sqrt(disc);
+    tNear = double(-b - s);
+    tFar = double(-b + s);
+    return true;
+}
+
+}  // namespace
+
+// Vertical ray from 10 km below a shell at 6.4e6 m: the distance is exactly the height difference.
+TEST(CloudMath, VerticalRayToShellIsHeightDifference)
+{
+    float tNear, tFar;
+    const float R = 6.4e6f;
+    ASSERT_TRUE(glsl::raySphereRoots(R + 1000.0f, 1.0f, 1000.0f, 1500.0f, R, tNear, tFar));
+    EXPECT_NEAR(tFar, 500.0f, 1e-3f);
+}
+
+// The cancellation-free form keeps float within centimetres of the double reference at earth radius,
+// where the naive form (rc^2 - rs^2 with rc ~ 6.4e6) loses metres.
+TEST(CloudMath, ShellIntersectionMatchesDoubleReference)
+{
+    const double R = 6.4e6;
+    int checked = 0;
+    for (double hc : {1.0, 300.0, 1200.0, 11000.0})
+        for (double hs : {900.0, 1700.0, 9500.0})
+            for (double mu = -0.3; mu <= 1.0; mu += 0.013)
+            {
+                double rn, rf;
+                float tn, tf;
+                bool ref = referenceRoots(R, hc, hs, mu, rn, rf);
+                bool got = glsl::raySphereRoots(float(R + hc), float(mu), float(hc), float(hs), float(R), tn, tf);
+                if (!ref || !got || std::fabs(rn * rn - rf * rf) < 1.0)
+                    continue;
+                // Relative float accuracy of the distance itself, plus 5 cm.
+                EXPECT_NEAR(tf, rf, 0.05 + 2e-6 * std::fabs(rf)) << "hc " << hc << " hs " << hs << " mu " << mu;
+                if (std::fabs(rn) < 1e6)
+                    EXPECT_NEAR(tn, rn, 0.05 + 2e-6 * std::fabs(rn)) << "hc " << hc << " hs " << hs << " mu " << mu;
+                ++checked;
+            }
+    EXPECT_GT(checked, 500);
+}
+
+TEST(CloudMath, ShellIntervalCases)
+{
+    const float R = 6.371e6f;
+    float a, b;
+    // Below the shell looking up: enter at base, leave at top.
+    ASSERT_TRUE(glsl::rayShellInterval(1.0f, 0.0f, 1000.0f, 3000.0f, R, 1e6f, a, b));
+    EXPECT_NEAR(a, 1000.0f, 0.01f);
+    EXPECT_NEAR(b, 3000.0f, 0.01f);
+    // Below the shell looking down: the ground comes first.
+    EXPECT_FALSE(glsl::rayShellInterval(-0.5f, 100.0f, 1000.0f, 3000.0f, R, 1e6f, a, b));
+    // Inside looking down: from the eye to the base.
+    ASSERT_TRUE(glsl::rayShellInterval(-1.0f, 2000.0f, 1000.0f, 3000.0f, R, 1e6f, a, b));
+    EXPECT_NEAR(a, 0.0f, 1e-3f);
+    EXPECT_NEAR(b, 1000.0f, 0.01f);
+    // Above looking down: from the top to the base.
+    ASSERT_TRUE(glsl::rayShellInterval(-1.0f, 11000.0f, 1000.0f, 3000.0f, R, 1e6f, a, b));
+    EXPECT_NEAR(a, 8000.0f, 0.01f);
+    EXPECT_NEAR(b, 10000.0f, 0.01f);
+    // Above looking up: nothing.
+    EXPECT_FALSE(glsl::rayShellInterval(0.5f, 11000.0f, 1000.0f, 3000.0f, R, 1e6f, a, b));
+    // Horizontal from inside: a long path out of the top of the shell (curvature), ~ sqrt(2 R dh).
+    ASSERT_TRUE(glsl::rayShellInterval(0.0f, 1000.0f, 500.0f, 3000.0f, R, 1e7f, a, b));
+    EXPECT_NEAR(b, std::sqrt(2.0 * 6.371e6 * 2000.0), 200.0);
+}
+
+TEST(CloudMath, HeightProfilesStayInUnitRangeAndVanishAtEnds)
+{
+    for (int type = 0; type <= 10; ++type)
+    {
+        EXPECT_NEAR(glsl::cloudHeightProfile(type, 0.0f), 0.0f, 1e-6f) << type;
+        EXPECT_NEAR(glsl::cloudHeightProfile(type, 1.0f), 0.0f, 1e-6f) << type;
+        float peak = 0.0f;
+        for (float h = -0.2f; h <= 1.2f; h += 0.01f)
+        {
+            float v = glsl::cloudHeightProfile(type, h);
+            EXPECT_GE(v, 0.0f);
+            EXPECT_LE(v, 1.0f);
+            peak = std::max(peak, v);
+        }
+        EXPECT_GT(peak, 0.9f) << type;
+    }
+    // Cumulus is bottom-heavy, stratus flat: at 60% height stratus is denser than cumulus.
+    EXPECT_GT(glsl::cloudHeightProfile(CLOUD_TYPE_STRATUS, 0.6f), glsl::cloudHeightProfile(CLOUD_TYPE_CUMULUS, 0.6f));
+}
+
+TEST(CloudMath, BeerPowderMatchesFormula)
+{
+    for (float d = 0.0f; d < 8.0f; d += 0.25f)
+        EXPECT_NEAR(glsl::beerPowder(d), 2.0f * std::exp(-d) * (1.0f - std::exp(-2.0f * d)), 1e-6f);
+    EXPECT_NEAR(glsl::beerPowder(0.0f), 0.0f, 1e-7f);
+    // Maximum at d = ln(3)/2.
+    float dMax = std::log(3.0f) / 2.0f;
+    EXPECT_GT(glsl::beerPowder(dMax), glsl::beerPowder(dMax - 0.1f));
+    EXPECT_GT(glsl::beerPowder(dMax), glsl::beerPowder(dMax + 0.1f));
+}
+
+TEST(CloudMath, CoverageRemap)
+{
+    EXPECT_EQ(glsl::applyCoverage(0.9f, 0.0f), 0.0f);
+    EXPECT_NEAR(glsl::applyCoverage(1.0f, 1.0f), 1.0f, 1e-6f);
+    // Shapes below 1 - coverage vanish; more coverage gives more cloud.
+    EXPECT_EQ(glsl::applyCoverage(0.5f, 0.3f), 0.0f);
+    EXPECT_GT(glsl::applyCoverage(0.8f, 0.6f), glsl::applyCoverage(0.8f, 0.3f));
+}
+
+// Häggström's anvil: the exponent widens the top (shape grows) only above 65% of the height, and the
+// density term falls to 0.2 at the top.
+TEST(CloudMath, AnvilTerms)
+{
+    EXPECT_NEAR(glsl::anvilShape(0.4f, 0.3f, 0.8f), 0.4f, 1e-6f);
+    EXPECT_GT(glsl::anvilShape(0.4f, 0.95f, 0.8f), 0.75f);
+    EXPECT_NEAR(glsl::anvilDensity(1.0f), 0.2f, 1e-5f);
+    EXPECT_NEAR(glsl::anvilDensity(0.0f), 0.0f, 1e-6f);
+    EXPECT_GT(glsl::anvilDensity(0.2f), glsl::anvilDensity(0.9f));
+}
+
+// Energy-conserving step: with a constant source, integrating two half steps with transmittance in
+// between equals one full step (Hillaire 2016), and thin media reduce to source * dt.
+TEST(CloudMath, EnergyConservingIntegrationIsSplitInvariant)
+{
+    vec3 S(0.7f, 0.5f, 0.3f);
+    float sigma = 0.05f, dt = 40.0f;
+    vec3 whole = glsl::integrateScattering(S, sigma, dt);
+    vec3 halves = glsl::integrateScattering(S, sigma, dt / 2) +
+                  std::exp(-sigma * dt / 2) * glsl::integrateScattering(S, sigma, dt / 2);
+    EXPECT_NEAR(whole.x, halves.x, 1e-5f);
+    EXPECT_NEAR(glsl::integrateScattering(S, 0.0f, dt).y, S.y * dt, 1e-4f);
+}

@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: MIT
+// SPIR-V reflection (skyservice/vk/programs.cpp) on the project's own compiled shaders: the interface
+// dispatch() checks against must be what the GLSL declares.
+#include "shaders/shared/atmosphere_params.h"
+#include "shaders/shared/noise_params.h"
+#include "skyservice/vk/programs.h"
+
+#include <fstream>
+#include <gtest/gtest.h>
+
+namespace
+{
+
+std::vector<uint32_t> loadSpirv(const std::string& name)
+{
+    std::ifstream f(sky::spirvDirectory() + "/" + name + ".spv", std::ios::binary | std::ios::ate);
+    std::vector<uint32_t> words(size_t(f.tellg()) / 4);
+    f.seekg(0);
+    f.read(reinterpret_cast<char*>(words.data()), std::streamsize(words.size() * 4));
+    return words;
+}
+
+}  // namespace
+
+TEST(Reflection, CloudMarchInterface)
+{
+    sky::ShaderInterface iface;
+    std::string error;
+    ASSERT_TRUE(sky::reflectSpirv(loadSpirv("cloud_march"), iface, error)) << error;
+    ASSERT_EQ(iface.bindings.size(), 10u);
+    EXPECT_EQ(iface.bindings[0], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+    EXPECT_EQ(iface.bindings[2], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+    EXPECT_EQ(iface.bindings[8], VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+    EXPECT_EQ(iface.localSize[0], uint32_t(WORKGROUP_SIZE_2D));
+    EXPECT_EQ(iface.pushConstantSize, 0u);
+}
+
+TEST(Reflection, PushConstantSizesMatchSharedStructs)
+{
+    sky::ShaderInterface iface;
+    std::string error;
+    ASSERT_TRUE(sky::reflectSpirv(loadSpirv("sky_view_lut"), iface, error)) << error;
+    EXPECT_EQ(iface.pushConstantSize, sizeof(SkyViewPushConstants));
+    ASSERT_TRUE(sky::reflectSpirv(loadSpirv("base_noise"), iface, error)) << error;
+    EXPECT_EQ(iface.pushConstantSize, sizeof(NoisePush));
+    EXPECT_EQ(iface.localSize[2], uint32_t(WORKGROUP_SIZE_3D));
+}
+
+TEST(Reflection, RejectsGarbage)
+{
+    sky::ShaderInterface iface;
+    std::string error;
+    EXPECT_FALSE(sky::reflectSpirv({1, 2, 3, 4, 5, 6}, iface, error));
+    EXPECT_NE(error.find("magic"), std::string::npos);
+    std::vector<uint32_t> truncated = loadSpirv("composite");
+    truncated.resize(truncated.size() / 2);
+    truncated.back() = 0xffff0001u;  // an instruction claiming 65535 words
+    EXPECT_FALSE(sky::reflectSpirv(truncated, iface, error));
+}

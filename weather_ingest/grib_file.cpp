@@ -1,0 +1,264 @@
+// SPDX-License-Identifier: MIT
+#include "weather_ingest/grib_file.h"
+
+#include "weather_ingest/ingest_error.h"
+
+#include <eccodes.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+namespace sky
+{
+namespace
+{
+
+// Value ecCodes writes into bitmap holes; set explicitly because the default (9999) is a plausible
+// geopotential height.
+constexpr double kMissingSentinel = 1.0e36;
+
+// ecCodes prints its own errors to stderr; ours name file, message and field, so its are dropped.
+// Multi-field support: NCEP packs u and v into one GRIB2 message; without it ecCodes returns only the first.
+void setUpEccodes()
+{
+    static const bool once = [] {
+        codes_context_set_logging_proc(codes_context_get_default(), [](const grib_context*, int, const char*) {});
+        codes_grib_multi_support_on(codes_context_get_default());
+        return true;
+    }();
+    (void)once;
+}
+
+std::string messageLocation(int number) { return "message " + std::to_string(number); }
+
+class KeyReader
+{
+public:
+    KeyReader(grib_handle* h, const std::string& file, int number) : h_(h), file_(file), number_(number) {}
+
+    bool has(const char* key) const { return codes_is_defined(h_, key) != 0; }
+
+    long getLong(const char* key) const
+    {
+        long v = 0;
+        check(codes_get_long(h_, key, &v), key);
+        return v;
+    }
+    long getLong(const char* key, long fallback) const { return has(key) ? getLong(key) : fallback; }
+
+    double getDouble(const char* key) const
+    {
+        double v = 0;
+        check(codes_get_double(h_, key, &v), key);
+        return v;
+    }
+
+    double getDoubleOr(const char* key) const { return has(key) ? getDouble(key) : std::nan(""); }
+
+    std::string getString(const char* key) const
+    {
+        if (!has(key))
+            return {};
+        char buf[256] = {};
+        size_t len = sizeof buf;
+        check(codes_get_string(h_, key, buf, &len), key);
+        return std::string(buf);
+    }
+
+    void check(int err, const char* key) const
+    {
+        if (err != CODES_SUCCESS)
+            throw IngestError(IngestErrorKind::Corrupt, file_, messageLocation(number_), key,
+                              std::string("ecCodes: ") + codes_get_error_message(err));
+    }
+
+private:
+    grib_handle* h_;
+    const std::string& file_;
+    int number_;
+};
+
+GribMessageInfo readInfo(grib_handle* h, const std::string& file, int number)
+{
+    const KeyReader k(h, file, number);
+    GribMessageInfo info;
+    info.number = number;
+    info.edition = k.getLong("editionNumber");
+    info.shortName = k.getString("shortName");
+    info.typeOfLevel = k.getString("typeOfLevel");
+    info.units = k.getString("units");
+    info.name = k.getString("name");
+    info.gridType = k.getString("gridType");
+    info.level = k.getLong("level", 0);
+    info.centre = k.getLong("centre", 0);
+    info.stepRange = k.getString("stepRange");
+    const long date = k.getLong("validityDate");
+    const long time = k.getLong("validityTime");
+    info.validTimeUnixS = unixTimeFromCivil(int(date / 10000), int(date / 100 % 100), int(date % 100),
+                                            int(time / 100), int(time % 100), 0);
+    char grid[200];
+    std::snprintf(grid, sizeof grid, "%s %ld x %ld, lat %g .. %g, lon %g .. %g", info.gridType.c_str(),
+                  k.getLong("Ni", 0), k.getLong("Nj", 0), k.getDoubleOr("latitudeOfFirstGridPointInDegrees"),
+                  k.getDoubleOr("latitudeOfLastGridPointInDegrees"), k.getDoubleOr("longitudeOfFirstGridPointInDegrees"),
+                  k.getDoubleOr("longitudeOfLastGridPointInDegrees"));
+    info.gridDescription = grid;
+    // Steps in hours whatever unit the message uses; a message that refuses the unit keeps its own.
+    codes_set_string(h, "stepUnits", "h", nullptr);
+    if (k.has("startStep") && k.has("endStep"))
+        info.accumulationHours = double(k.getLong("endStep") - k.getLong("startStep"));
+    return info;
+}
+
+}  // namespace
+
+void GribMessage::HandleDeleter::operator()(grib_handle* h) const { codes_handle_delete(h); }
+
+GribMessage::GribMessage() = default;
+GribMessage::~GribMessage() = default;
+GribMessage::GribMessage(GribMessage&&) noexcept = default;
+GribMessage& GribMessage::operator=(GribMessage&&) noexcept = default;
+
+GridField GribMessage::decode(size_t maxCells) const
+{
+    grib_handle* h = handle_.get();
+    const std::string where = messageLocation(info_.number);
+    const std::string field = info_.label();
+    const KeyReader k(h, file_, info_.number);
+    if (info_.gridType != "regular_ll")
+        throw IngestError(IngestErrorKind::UnsupportedGrid, file_, where, field,
+                          "grid type '" + info_.gridType +
+                              "' is not supported: only regular latitude/longitude (regular_ll) GRIB grids are read; "
+                              "regrid first (e.g. cdo remapbil or ecCodes/MIR)");
+    const long ni = k.getLong("Ni");
+    const long nj = k.getLong("Nj");
+    if (ni < 1 || nj < 1 || double(ni) * double(nj) > double(maxCells))
+        throw IngestError(IngestErrorKind::TooLarge, file_, where, field,
+                          "grid " + std::to_string(ni) + " x " + std::to_string(nj) + " is empty or exceeds " +
+                              std::to_string(maxCells) + " points");
+    size_t count = 0;
+    k.check(codes_get_size(h, "values", &count), "values");
+    if (count != size_t(ni) * size_t(nj))
+        throw IngestError(IngestErrorKind::Corrupt, file_, where, field,
+                          std::to_string(count) + " values for a " + std::to_string(ni) + " x " + std::to_string(nj) +
+                              " grid");
+
+    const double firstLat = k.getDouble("latitudeOfFirstGridPointInDegrees");
+    const double firstLon = k.getDouble("longitudeOfFirstGridPointInDegrees");
+    const double lastLat = k.getDouble("latitudeOfLastGridPointInDegrees");
+    const double lastLon = k.getDouble("longitudeOfLastGridPointInDegrees");
+    const bool iNegative = k.getLong("iScansNegatively", 0) != 0;
+    const bool jPositive = k.getLong("jScansPositively", 0) != 0;
+    const bool jConsecutive = k.getLong("jPointsAreConsecutive", 0) != 0;
+    const bool alternateRows = k.getLong("alternativeRowScanning", 0) != 0;
+
+    double dLon = 0;
+    if (ni > 1)
+    {
+        double span = iNegative ? firstLon - lastLon : lastLon - firstLon;
+        if (span < 0)
+            span += 360.0;  // e.g. 180 .. 179.75 going east through 0
+        dLon = span / double(ni - 1);
+    }
+    else
+    {
+        dLon = k.has("iDirectionIncrementInDegrees") ? std::abs(k.getDouble("iDirectionIncrementInDegrees")) : 1.0;
+    }
+    double dLat = 0;
+    if (nj > 1)
+        dLat = (lastLat - firstLat) / double(nj - 1);
+    else
+        dLat = (jPositive ? 1.0 : -1.0) *
+               (k.has("jDirectionIncrementInDegrees") ? std::abs(k.getDouble("jDirectionIncrementInDegrees")) : 1.0);
+    const bool latOk = std::abs(firstLat) <= 90.0 + 1e-6 && std::abs(lastLat) <= 90.0 + 1e-6;
+    if (!(dLon > 0) || double(ni) * dLon > 360.0 + dLon * 0.5 || !latOk || (nj > 1 && dLat == 0) ||
+        (nj > 1 && (dLat > 0) != jPositive))
+        throw IngestError(IngestErrorKind::Corrupt, file_, where, field,
+                          "inconsistent grid: first (" + std::to_string(firstLat) + ", " + std::to_string(firstLon) +
+                              "), last (" + std::to_string(lastLat) + ", " + std::to_string(lastLon) +
+                              "), " + std::to_string(ni) + " x " + std::to_string(nj) + " points");
+
+    GridField out;
+    out.grid.nLon = uint32_t(ni);
+    out.grid.nLat = uint32_t(nj);
+    out.grid.dLonDeg = dLon;
+    out.grid.dLatDeg = dLat;
+    out.grid.lat0Deg = firstLat;
+    out.grid.lon0Deg = wrapLongitudeDeg(iNegative ? firstLon - double(ni - 1) * dLon : firstLon);
+
+    k.check(codes_set_double(h, "missingValue", kMissingSentinel), "missingValue");
+    std::vector<double> raw(count);
+    size_t got = count;
+    k.check(codes_get_double_array(h, "values", raw.data(), &got), "values");
+    if (got != count)
+        throw IngestError(IngestErrorKind::Corrupt, file_, where, field, "short read of values");
+    const bool bitmap = k.getLong("bitmapPresent", 0) != 0;
+
+    out.values.resize(count);
+    const auto uni = size_t(ni);
+    const auto unj = size_t(nj);
+    for (size_t s = 0; s < count; ++s)
+    {
+        size_t i = jConsecutive ? s / unj : s % uni;
+        const size_t j = jConsecutive ? s % unj : s / uni;
+        if (alternateRows && !jConsecutive && (j & 1u))
+            i = uni - 1 - i;
+        const size_t column = iNegative ? uni - 1 - i : i;
+        const double v = raw[s];
+        const bool missing = bitmap && v == kMissingSentinel;
+        const bool invalid = !missing && !std::isfinite(v);
+        out.invalidCount += invalid ? 1u : 0u;
+        out.values[j * uni + column] = missing || invalid ? NAN : static_cast<float>(v);
+    }
+    return out;
+}
+
+GribFile::GribFile(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "rb"))
+{
+    if (!file_)
+        throw IngestError(IngestErrorKind::Io, path, "", "", std::string("cannot open: ") + std::strerror(errno));
+    setUpEccodes();
+    if (std::fseek(file_.get(), 0, SEEK_END) == 0)
+        sizeBytes_ = std::ftell(file_.get());
+    std::rewind(file_.get());
+}
+
+GribFile::GribFile(const std::string& name, const void* data, size_t size)
+    : path_(name), file_(fmemopen(const_cast<void*>(data), size, "rb"))
+{
+    if (!file_)
+        throw IngestError(IngestErrorKind::Io, name, "", "", "cannot read from memory");
+    setUpEccodes();
+    sizeBytes_ = long(size);
+}
+
+double GribFile::fractionRead() const
+{
+    return sizeBytes_ > 0 ? std::clamp(double(std::ftell(file_.get())) / double(sizeBytes_), 0.0, 1.0) : 1.0;
+}
+
+GribFile::~GribFile() = default;
+
+bool GribFile::next(GribMessage& message)
+{
+    int err = CODES_SUCCESS;
+    grib_handle* h = codes_handle_new_from_file(nullptr, file_.get(), PRODUCT_GRIB, &err);
+    const int number = count_ + 1;
+    if (!h)
+    {
+        if (err == CODES_SUCCESS || err == CODES_END_OF_FILE)
+            return false;
+        throw IngestError(IngestErrorKind::Corrupt, path_, messageLocation(number), "",
+                          std::string("ecCodes: ") + codes_get_error_message(err) +
+                              (err == CODES_PREMATURE_END_OF_FILE ? " (the file is truncated)" : ""));
+    }
+    message.handle_.reset(h);
+    message.file_ = path_;
+    count_ = number;
+    message.info_ = readInfo(h, path_, number);
+    return true;
+}
+
+}  // namespace sky

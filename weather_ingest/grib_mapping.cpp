@@ -1,0 +1,402 @@
+// SPDX-License-Identifier: MIT
+#include "weather_ingest/grib_mapping.h"
+
+#include "weather_ingest/ingest_error.h"
+#include "weather_ingest/pressure_altitude.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sky
+{
+namespace
+{
+
+constexpr double kStandardGravity = 9.80665;  // m s^-2, WMO (ICAO Doc 7488/3)
+constexpr float kSecondsPerHour = 3600.0f;
+
+// ECMWF's cloud-cover bands (IFS documentation, Part IV "Physical processes": low/medium/high cloud cover
+// are diagnosed below sigma 0.8, between 0.8 and 0.45, and above 0.45), taken here on pressure levels.
+constexpr double kEcmwfLowTopPa = 80000.0;
+constexpr double kEcmwfMiddleTopPa = 45000.0;
+constexpr float kCloudyLevelFraction = 0.05f;  // a pressure level counts as cloudy from 5 % cover
+
+class GribMapper
+{
+public:
+    GribMapper(const std::vector<const GribRecord*>& records, const MappingOptions& options,
+               std::vector<std::string>& warnings)
+        : records_(records), check_(options, warnings, records.empty() ? std::string() : records[0]->file)
+    {
+    }
+
+    WeatherSnapshot run();
+
+private:
+    const GribRecord* find(GribRole role) const
+    {
+        const GribRecord* best = nullptr;
+        for (const GribRecord* r : records_)
+            if (r->row.role == role && (!best || r->row.priority < best->row.priority))
+                best = r;
+        return best;
+    }
+
+    LevelStack stack(GribRole role, float scale)
+    {
+        LevelStack s;
+        for (const GribRecord* r : records_)
+        {
+            if (r->row.role != role)
+                continue;
+            std::vector<float> v = r->field.values;
+            if (scale != 1.0f)
+                for (float& x : v)
+                    x *= scale;
+            s.addLevel(r->levelPa, v);
+            note(role, r);
+        }
+        return s;
+    }
+
+    void note(GribRole role, const GribRecord* r)
+    {
+        check_.invalidValues(r->field.invalidCount, r->info.label(), r->source);
+        used_.push_back({role, r});
+    }
+
+    std::vector<float> coverage(const GribRecord* r)
+    {
+        std::vector<float> v = r->field.values;
+        const float scale = r->info.units.find('%') != std::string::npos ? 0.01f : 1.0f;
+        check_.coverage(v, scale, r->info.label(), r->source, grid_);
+        note(r->row.role, r);
+        return v;
+    }
+
+    std::vector<float> values(const GribRecord* r, float lo, float hi)
+    {
+        std::vector<float> v = r->field.values;
+        check_.range(v, lo, hi, r->info.label(), r->source, grid_);
+        note(r->row.role, r);
+        return v;
+    }
+
+    /// A rate in mm/h from a rate (kg m-2 s-1) or an accumulation (kg m-2 = mm, or m of water).
+    std::vector<float> rateMmH(GribRole rateRole, GribRole accRole, std::string& source)
+    {
+        if (const GribRecord* r = find(rateRole))
+        {
+            std::vector<float> v = values(r, 0.0f, 1.0f);
+            for (float& x : v)
+                x *= kSecondsPerHour;
+            source = r->source + " (kg m-2 s-1 x 3600)";
+            return v;
+        }
+        const GribRecord* r = find(accRole);
+        if (!r)
+            return {};
+        if (r->info.accumulationHours <= 0)
+        {
+            check_.warn(r->source + ": accumulation period unknown; not used as a rate");
+            return {};
+        }
+        const float toMm = r->info.units == "m" ? 1000.0f : 1.0f;
+        std::vector<float> v = values(r, 0.0f, r->info.units == "m" ? 10.0f : 10000.0f);
+        const auto scale = static_cast<float>(double(toMm) / r->info.accumulationHours);
+        for (float& x : v)
+            x *= scale;
+        source = r->source + " (accumulated over " + std::to_string(int(r->info.accumulationHours)) + " h)";
+        return v;
+    }
+
+    void heights(size_t layerIndex, LayerKind kind, GribRole bottomRole, GribRole topRole, WeatherSnapshot& s);
+    void highLayer(WeatherSnapshot& s);
+    bool ccBand(size_t cell, double pHighPa, double pLowPa, float& baseM, float& topM) const;
+
+    const std::vector<const GribRecord*>& records_;
+    ValueChecker check_;
+    LatLonGrid grid_;
+    LevelStack heightM_, windU_, windV_, cloudCover_;
+    std::vector<std::pair<GribRole, const GribRecord*>> used_;
+    std::vector<float> ground_;  // ground altitude (m), for above-ground heights; may be empty
+};
+
+/// Base and top (m) of the cloudy pressure levels (cc >= 5 %) with pressure in [pHighPa, pLowPa).
+bool GribMapper::ccBand(size_t cell, double pHighPa, double pLowPa, float& baseM, float& topM) const
+{
+    bool any = false;
+    for (size_t k = 0; k < cloudCover_.pressurePa.size(); ++k)
+    {
+        const double p = cloudCover_.pressurePa[k];
+        if (p < pHighPa || p >= pLowPa || !(cloudCover_.values[k * cloudCover_.cells + cell] >= kCloudyLevelFraction))
+            continue;
+        const float z = pressureToAltitudeM(heightM_, cell, p);
+        baseM = any ? std::min(baseM, z) : z;
+        topM = any ? std::max(topM, z) : z;
+        any = true;
+    }
+    if (any && topM - baseM < 500.0f)
+        topM = baseM + 500.0f;  // one cloudy level: give the cloud a minimal depth
+    return any;
+}
+
+void GribMapper::heights(size_t layerIndex, LayerKind kind, GribRole bottomRole, GribRole topRole, WeatherSnapshot& s)
+{
+    CloudLayerFields& l = s.layers[layerIndex];
+    const size_t n = grid_.cellCount();
+    const GribRecord* bottom = find(bottomRole);
+    const GribRecord* top = find(topRole);
+    std::vector<float> pb, pt;
+    if (bottom && top)
+    {
+        pb = values(bottom, 1.0f, 110000.0f);
+        pt = values(top, 1.0f, 110000.0f);
+        s.provenance["layers/" + std::to_string(layerIndex) + "/baseAltitudeM"] = bottom->source;
+        s.provenance["layers/" + std::to_string(layerIndex) + "/topAltitudeM"] = top->source;
+    }
+    const GribRecord* cbh = kind == LayerKind::Low ? find(GribRole::CloudBaseHeight) : nullptr;
+    std::vector<float> cbhM = cbh ? values(cbh, -1000.0f, 30000.0f) : std::vector<float>();
+    const LayerDefaults def = layerDefaults(kind);
+    const double bandLow = kind == LayerKind::Low ? 1e9 : kEcmwfLowTopPa;
+    const double bandHigh = kind == LayerKind::Low ? kEcmwfLowTopPa : kEcmwfMiddleTopPa;
+    size_t defaulted = 0;
+    for (size_t i = 0; i < n; ++i)
+    {
+        double midPa = std::sqrt(def.basePa * def.topPa);
+        if (!pb.empty() && std::isfinite(pb[i]) && std::isfinite(pt[i]))
+        {
+            l.baseAltitudeM[i] = pressureToAltitudeM(heightM_, i, pb[i]);
+            l.topAltitudeM[i] = pressureToAltitudeM(heightM_, i, pt[i]);
+            midPa = std::sqrt(double(pb[i]) * double(pt[i]));
+        }
+        else if (l.coverage[i] >= kMinCloudCoverage)
+        {
+            float baseM = NAN, topM = NAN;
+            if (kind != LayerKind::Convective && !cloudCover_.empty() && ccBand(i, bandHigh, bandLow, baseM, topM))
+            {
+                l.baseAltitudeM[i] = baseM;
+                l.topAltitudeM[i] = topM;
+            }
+            else
+            {
+                l.baseAltitudeM[i] = pressureToAltitudeM(heightM_, i, def.basePa);
+                l.topAltitudeM[i] = pressureToAltitudeM(heightM_, i, def.topPa);
+                ++defaulted;
+            }
+            if (!cbhM.empty() && std::isfinite(cbhM[i]))
+            {
+                const float groundM = ground_.empty() || !std::isfinite(ground_[i]) ? 0.0f : ground_[i];
+                const float depthM = l.topAltitudeM[i] - l.baseAltitudeM[i];
+                l.baseAltitudeM[i] = groundM + cbhM[i];
+                l.topAltitudeM[i] = std::max(l.topAltitudeM[i], l.baseAltitudeM[i] + std::max(depthM, 300.0f));
+            }
+        }
+        if (!windU_.empty() && !windV_.empty())
+        {
+            const float u = windU_.at(i, midPa, false);
+            const float v = windV_.at(i, midPa, false);
+            l.windEastMS[i] = std::isfinite(u) ? u : 0.0f;
+            l.windNorthMS[i] = std::isfinite(v) ? v : 0.0f;
+        }
+    }
+    if (defaulted > 0)
+        s.provenance["layers/" + std::to_string(layerIndex) + "/defaults"] =
+            std::to_string(defaulted) + " cells without base/top: default " + std::to_string(int(def.basePa / 100)) +
+            ".." + std::to_string(int(def.topPa / 100)) + " hPa";
+    const std::string what = "pres/" + std::string(layerKindName(kind)) + " cloud bottom vs top";
+    check_.baseBelowTop(l.baseAltitudeM, l.topAltitudeM, what, bottom ? bottom->source : "layer defaults", grid_);
+}
+
+void GribMapper::highLayer(WeatherSnapshot& s)
+{
+    const GribRecord* cover = find(GribRole::CoverHigh);
+    if (!cover)
+        return;
+    const size_t n = grid_.cellCount();
+    s.high.coverage = coverage(cover);
+    s.provenance["high/coverage"] = cover->source;
+    const GribRecord* bottom = find(GribRole::PresHighBottom);
+    const GribRecord* top = find(GribRole::PresHighTop);
+    std::vector<float> pb, pt;
+    if (bottom && top)
+    {
+        pb = values(bottom, 1.0f, 110000.0f);
+        pt = values(top, 1.0f, 110000.0f);
+        s.provenance["high/altitudeM"] = bottom->source + " + " + top->source + " (mid-layer pressure)";
+    }
+    const LayerDefaults def = layerDefaults(LayerKind::High);
+    s.high.altitudeM.assign(n, NAN);
+    s.high.windEastMS.assign(n, 0.0f);
+    s.high.windNorthMS.assign(n, 0.0f);
+    for (size_t i = 0; i < n; ++i)
+    {
+        double midPa = std::sqrt(def.basePa * def.topPa);
+        if (!pb.empty() && std::isfinite(pb[i]) && std::isfinite(pt[i]))
+            midPa = std::sqrt(double(pb[i]) * double(pt[i]));
+        float baseM = NAN, topM = NAN;
+        if (pb.empty() && !cloudCover_.empty() && ccBand(i, 1.0, kEcmwfMiddleTopPa, baseM, topM))
+            s.high.altitudeM[i] = 0.5f * (baseM + topM);
+        else
+            s.high.altitudeM[i] = pressureToAltitudeM(heightM_, i, midPa);
+        if (!windU_.empty() && !windV_.empty())
+        {
+            const float u = windU_.at(i, midPa, false);
+            const float v = windV_.at(i, midPa, false);
+            s.high.windEastMS[i] = std::isfinite(u) ? u : 0.0f;
+            s.high.windNorthMS[i] = std::isfinite(v) ? v : 0.0f;
+        }
+    }
+}
+
+WeatherSnapshot GribMapper::run()
+{
+    const GribRecord* low = find(GribRole::CoverLow);
+    const GribRecord* boundary = find(GribRole::CoverBoundaryLayer);
+    const GribRecord* middle = find(GribRole::CoverMiddle);
+    const GribRecord* convective = find(GribRole::CoverConvective);
+    const GribRecord* high = find(GribRole::CoverHigh);
+    const GribRecord* anyCover = low ? low : boundary ? boundary : middle ? middle : convective ? convective : high;
+    if (!anyCover)
+        throw IngestError(IngestErrorKind::MissingFields, records_.empty() ? "" : records_[0]->file, "", "",
+                          "no cloud cover field: looked for tcc on the low/middle/high/convective/boundary-layer "
+                          "cloud layers (GFS) and lcc/mcc/hcc (ECMWF)");
+    grid_ = anyCover->field.grid;
+    for (const GribRecord* r : records_)
+        if (!sameGrid(r->field.grid, grid_))
+            throw IngestError(IngestErrorKind::UnsupportedGrid, r->file, "message " + std::to_string(r->info.number),
+                              r->info.label(),
+                              "on a " + std::to_string(r->field.grid.nLon) + " x " + std::to_string(r->field.grid.nLat) +
+                                  " grid unlike " + anyCover->source + " (" + std::to_string(grid_.nLon) + " x " +
+                                  std::to_string(grid_.nLat) + "); give one grid per conversion");
+
+    WeatherSnapshot s;
+    s.grid = grid_;
+    s.validTimeUnixS = anyCover->info.validTimeUnixS;
+    const size_t n = grid_.cellCount();
+    s.layers = makeEmptyLayers(n);
+
+    heightM_ = stack(GribRole::LevelHeight, 1.0f);
+    if (heightM_.empty())
+        heightM_ = stack(GribRole::LevelGeopotential, float(1.0 / kStandardGravity));
+    s.provenance["altitudes"] = heightM_.empty()
+                                    ? "pressure -> altitude: ICAO standard atmosphere (no geopotential on levels)"
+                                    : "pressure -> altitude: geopotential height on " +
+                                          std::to_string(heightM_.pressurePa.size()) +
+                                          " pressure levels, log-pressure interpolation";
+    windU_ = stack(GribRole::LevelU, 1.0f);
+    windV_ = stack(GribRole::LevelV, 1.0f);
+    cloudCover_ = stack(GribRole::LevelCloudCover, 1.0f);
+    s.provenance["wind"] = windU_.empty() || windV_.empty()
+                               ? "absent: 0 m/s"
+                               : "u/v on " + std::to_string(windU_.pressurePa.size()) +
+                                     " pressure levels at each layer's mid-layer pressure";
+    if (const GribRecord* orog = find(GribRole::Orography))
+        ground_ = values(orog, -1000.0f, 9000.0f);
+    else if (const GribRecord* z = find(GribRole::SurfaceGeopotential))
+    {
+        ground_ = values(z, -10000.0f, 90000.0f);
+        for (float& g : ground_)
+            g = static_cast<float>(double(g) / kStandardGravity);
+    }
+
+    if (low || boundary)
+    {
+        s.layers[kLowLayer].coverage = low ? coverage(low) : coverage(boundary);
+        s.provenance["layers/0/coverage"] = low ? low->source : boundary->source;
+        if (low && boundary)
+        {
+            const std::vector<float> bl = coverage(boundary);
+            for (size_t i = 0; i < n; ++i)
+                s.layers[kLowLayer].coverage[i] = std::fmax(s.layers[kLowLayer].coverage[i], bl[i]);
+            s.provenance["layers/0/coverage"] += " max " + boundary->source;
+        }
+    }
+    if (middle)
+    {
+        s.layers[kMiddleLayer].coverage = coverage(middle);
+        s.provenance["layers/1/coverage"] = middle->source;
+    }
+    if (convective)
+    {
+        s.layers[kConvectiveLayer].coverage = coverage(convective);
+        s.provenance["layers/2/coverage"] = convective->source;
+    }
+    heights(kLowLayer, LayerKind::Low, GribRole::PresLowBottom, GribRole::PresLowTop, s);
+    heights(kMiddleLayer, LayerKind::Middle, GribRole::PresMiddleBottom, GribRole::PresMiddleTop, s);
+    heights(kConvectiveLayer, LayerKind::Convective, GribRole::PresConvBottom, GribRole::PresConvTop, s);
+    highLayer(s);
+
+    if (const GribRecord* cape = find(GribRole::Cape))
+    {
+        s.capeJKg = values(cape, 0.0f, 20000.0f);
+        s.provenance["capeJKg"] = cape->source;
+    }
+    if (const GribRecord* tropo = find(GribRole::TropopauseHeight))
+    {
+        s.tropopauseAltitudeM = values(tropo, 0.0f, 30000.0f);
+        s.provenance["tropopauseAltitudeM"] = tropo->source;
+    }
+    else if (const GribRecord* trpp = find(GribRole::TropopausePressure))
+    {
+        const std::vector<float> p = values(trpp, 1.0f, 110000.0f);
+        s.tropopauseAltitudeM.resize(n);
+        for (size_t i = 0; i < n; ++i)
+            s.tropopauseAltitudeM[i] = pressureToAltitudeM(heightM_, i, p[i]);
+        s.provenance["tropopauseAltitudeM"] = trpp->source + " (pressure -> altitude)";
+    }
+
+    std::string convSource, totalSource, largeSource;
+    std::vector<float> conv = rateMmH(GribRole::ConvPrecipRate, GribRole::ConvPrecipAcc, convSource);
+    std::vector<float> total = rateMmH(GribRole::PrecipRate, GribRole::TotalPrecipAcc, totalSource);
+    std::vector<float> large;
+    if (!total.empty())
+    {
+        large = total;
+        for (size_t i = 0; i < n && !conv.empty(); ++i)
+            large[i] = std::max(0.0f, large[i] - (std::isfinite(conv[i]) ? conv[i] : 0.0f));
+        largeSource = totalSource + (conv.empty() ? "" : " minus convective");
+    }
+    else
+    {
+        large = rateMmH(GribRole::Count, GribRole::LargeScalePrecipAcc, largeSource);
+    }
+    attributePrecipitation(s, conv, large);
+    s.provenance["precipitation/convective"] = conv.empty() ? "absent" : convSource;
+    s.provenance["precipitation/largeScale"] = large.empty() ? "absent" : largeSource;
+
+    if (check_.options().keepLevelFields)
+    {
+        const std::pair<GribRole, const char*> kept[] = {{GribRole::LevelCloudMixingRatio, "cloudMixingRatio"},
+                                                         {GribRole::LevelCloudCover, "cloudCover"},
+                                                         {GribRole::LevelCloudLiquid, "cloudLiquidWater"},
+                                                         {GribRole::LevelCloudIce, "cloudIceWater"}};
+        for (const auto& [role, name] : kept)
+        {
+            LevelStack st = stack(role, 1.0f);
+            if (st.empty())
+                continue;
+            PressureLevelField f;
+            f.name = name;
+            f.units = role == GribRole::LevelCloudCover ? "1" : "kg/kg";
+            f.pressurePa.assign(st.pressurePa.begin(), st.pressurePa.end());
+            f.values = std::move(st.values);
+            s.provenance["levelFields/" + std::string(name)] = find(role)->source + " and other levels";
+            s.levelFields.push_back(std::move(f));
+        }
+    }
+    assignCloudTypes(s, conv);
+    s.provenance["types"] = "cloud-type rule table (README \"Cloud types\")";
+    return s;
+}
+
+}  // namespace
+
+WeatherSnapshot mapGribRecords(const std::vector<const GribRecord*>& records, const MappingOptions& options,
+                               std::vector<std::string>& warnings)
+{
+    GribMapper mapper(records, options, warnings);
+    return mapper.run();
+}
+
+}  // namespace sky

@@ -1,0 +1,294 @@
+// SPDX-License-Identifier: MIT
+#include "weather_ingest/ingest.h"
+
+#include "weather_ingest/grib_mapping.h"
+#include "weather_ingest/ingest_error.h"
+#include "weather_ingest/netcdf_file.h"
+#include "weather_ingest/snapshot_file.h"
+#include "weather_ingest/wrf_mapping.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <deque>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <set>
+
+namespace sky
+{
+namespace
+{
+
+std::string isoTime(int64_t unixS)
+{
+    const auto t = static_cast<std::time_t>(unixS);
+    std::tm tm = {};
+    gmtime_r(&t, &tm);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    return buf;
+}
+
+bool startsWith(const std::vector<uint8_t>& b, const char* magic, size_t n)
+{
+    return b.size() >= n && std::memcmp(b.data(), magic, n) == 0;
+}
+
+std::string looksLike(const std::vector<uint8_t>& b)
+{
+    if (startsWith(b, "\x89PNG", 4))
+        return "a PNG image";
+    if (startsWith(b, "\xFF\xD8\xFF", 3))
+        return "a JPEG image";
+    if (startsWith(b, "\x1F\x8B", 2))
+        return "gzip-compressed data (decompress it first)";
+    if (startsWith(b, "BZh", 3))
+        return "bzip2-compressed data (decompress it first)";
+    if (startsWith(b, "\x89SKYWX", 6))
+        return "a sky weather snapshot (use `sky-ingest check`)";
+    const bool text = std::all_of(b.begin(), b.end(), [](uint8_t c) { return c == '\n' || c == '\r' || c == '\t' || (c >= 32 && c < 127); });
+    return text ? "a text file" : "unknown binary data";
+}
+
+}  // namespace
+
+InputFormat detectFormat(const std::string& path)
+{
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw IngestError(IngestErrorKind::Io, path, "", "", "is a directory");
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+    if (!f)
+        throw IngestError(IngestErrorKind::Io, path, "", "", std::string("cannot open: ") + std::strerror(errno));
+    std::vector<uint8_t> head(4096);
+    head.resize(std::fread(head.data(), 1, head.size(), f.get()));
+    if (head.empty())
+        throw IngestError(IngestErrorKind::NotRecognized, path, "", "", "empty file (0 bytes)");
+    if (startsWith(head, "CDF\x01", 4) || startsWith(head, "CDF\x02", 4) || startsWith(head, "CDF\x05", 4) ||
+        startsWith(head, "\x89HDF\r\n\x1A\n", 8))
+        return InputFormat::NetCdf;
+    static const char kGrib[] = "GRIB";
+    if (std::search(head.begin(), head.end(), kGrib, kGrib + 4) != head.end())
+        return InputFormat::Grib;
+    throw IngestError(IngestErrorKind::NotRecognized, path, "", "",
+                      "neither GRIB nor NetCDF: looks like " + looksLike(head));
+}
+
+ConvertResult convertFiles(const std::vector<std::string>& paths, const MappingOptions& options,
+                           const ProgressFn& progress)
+{
+    ConvertResult result;
+    std::deque<std::vector<GribRecord>> gribFiles;  // deque: pointers into it stay valid
+    const double perFile = 0.9 / double(std::max<size_t>(paths.size(), 1));
+    for (size_t fi = 0; fi < paths.size(); ++fi)
+    {
+        const std::string& path = paths[fi];
+        const ProgressFn fileProgress = [&](double fraction, const std::string& stage) {
+            if (progress)
+                progress(double(fi) * perFile + fraction * perFile,
+                         std::filesystem::path(path).filename().string() + ": " + stage);
+        };
+        if (detectFormat(path) == InputFormat::Grib)
+        {
+            GribFile file(path);
+            gribFiles.push_back(readGribRecords(file, kMaxSnapshotCells, fileProgress));
+        }
+        else
+        {
+            const NcFile file(path);
+            std::vector<WeatherSnapshot> s = mapWrfFile(file, options, result.warnings, fileProgress);
+            for (WeatherSnapshot& w : s)
+                result.snapshots.push_back(std::move(w));
+        }
+    }
+    std::map<int64_t, std::vector<const GribRecord*>> byTime;
+    for (const std::vector<GribRecord>& records : gribFiles)
+        for (const GribRecord& r : records)
+            byTime[r.info.validTimeUnixS].push_back(&r);
+    size_t done = 0;
+    for (const auto& [time, records] : byTime)
+    {
+        if (progress)
+            progress(0.9 + 0.1 * double(done++) / double(byTime.size()), "mapping " + isoTime(time));
+        result.snapshots.push_back(mapGribRecords(records, options, result.warnings));
+    }
+    std::stable_sort(result.snapshots.begin(), result.snapshots.end(),
+                     [](const WeatherSnapshot& a, const WeatherSnapshot& b) { return a.validTimeUnixS < b.validTimeUnixS; });
+    for (size_t i = 0; i < result.snapshots.size(); ++i)
+    {
+        std::string error;
+        if (!validateSnapshot(result.snapshots[i], error))
+            throw IngestError(IngestErrorKind::BadValues, paths.front(), "snapshot " + isoTime(result.snapshots[i].validTimeUnixS),
+                              "", error);
+        if (i > 0 && result.snapshots[i].validTimeUnixS == result.snapshots[i - 1].validTimeUnixS)
+            throw IngestError(IngestErrorKind::BadValues, paths.front(), "", "",
+                              "two inputs give the valid time " + isoTime(result.snapshots[i].validTimeUnixS) +
+                                  "; convert them separately");
+    }
+    if (result.snapshots.empty())
+        throw IngestError(IngestErrorKind::MissingFields, paths.empty() ? "" : paths.front(), "", "",
+                          "no snapshot could be made");
+    if (progress)
+        progress(1.0, "done");
+    return result;
+}
+
+namespace
+{
+
+std::string describeGrib(const std::string& path)
+{
+    GribFile file(path);
+    GribMessage m;
+    std::map<std::string, int> grids, times, editions;
+    std::map<GribRole, std::vector<GribMessageInfo>> used;
+    std::map<std::string, int> unused;
+    int count = 0;
+    while (file.next(m))
+    {
+        const GribMessageInfo& info = m.info();
+        ++count;
+        ++grids[info.gridDescription];
+        ++times[isoTime(info.validTimeUnixS)];
+        ++editions["GRIB" + std::to_string(info.edition)];
+        if (const auto row = gribRoleOf(info))
+            used[row->role].push_back(info);
+        else
+            ++unused[info.shortName + "/" + info.typeOfLevel];
+    }
+    if (count == 0)
+        throw IngestError(IngestErrorKind::NotRecognized, path, "", "", "no GRIB message found");
+    std::string s = "file:        " + path + "\nformat:      ";
+    for (const auto& [e, n] : editions)
+        s += e + " (" + std::to_string(n) + " messages) ";
+    s += "\ngrids:\n";
+    for (const auto& [g, n] : grids)
+        s += "  " + g + "  [" + std::to_string(n) + " messages]" +
+             (g.rfind("regular_ll", 0) == 0 ? "" : "  <- NOT SUPPORTED (only regular_ll)") + "\n";
+    s += "valid times:\n";
+    for (const auto& [t, n] : times)
+        s += "  " + t + "  [" + std::to_string(n) + " messages]\n";
+    s += "fields used:\n";
+    for (const auto& [role, infos] : used)
+    {
+        const std::optional<GribRoleRow> row = gribRoleOf(infos.front());
+        char line[400];
+        if (isLevelRole(role))
+        {
+            long lo = infos.front().level, hi = lo;
+            for (const GribMessageInfo& i : infos)
+            {
+                lo = std::min(lo, i.level);
+                hi = std::max(hi, i.level);
+            }
+            std::snprintf(line, sizeof line, "  %-26s %2zu levels %ld..%ld %s: %s -> %s\n",
+                          (infos.front().shortName + "/" + infos.front().typeOfLevel).c_str(), infos.size(), lo, hi,
+                          infos.front().typeOfLevel == "isobaricInPa" ? "Pa" : "hPa", row->meaning, row->target);
+        }
+        else
+        {
+            std::snprintf(line, sizeof line, "  %-26s message %d: %s -> %s\n",
+                          (infos.front().shortName + "/" + infos.front().typeOfLevel).c_str(), infos.front().number,
+                          row->meaning, row->target);
+        }
+        s += line;
+    }
+    s += "not found (used when present):\n";
+    std::set<GribRole> listed;
+    for (const GribRoleRow& row : gribRoleTable())
+    {
+        if (used.count(row.role) || listed.count(row.role))
+            continue;
+        listed.insert(row.role);
+        s += std::string("  ") + row.meaning + " [" + row.source + ": " + row.shortNames + " on " + row.typeOfLevels +
+             "]\n";
+    }
+    s += "not used: " + std::to_string(count - int([&] { size_t n = 0; for (auto& [r, v] : used) n += v.size(); return n; }())) +
+         " messages (";
+    size_t shown = 0;
+    for (const auto& [name, n] : unused)
+        if (shown++ < 12)
+            s += (shown > 1 ? ", " : "") + name;
+    s += unused.size() > 12 ? ", ...)\n" : ")\n";
+    if (used.empty())
+        s += "=> no cloud field: `convert` will fail with exit code 7\n";
+    return s;
+}
+
+std::string describeNetCdf(const std::string& path)
+{
+    const NcFile f(path);
+    std::string s = "file:        " + path + "\nformat:      " + f.formatName() + "\n";
+    const std::vector<std::string> names = f.variableNames();
+    s += "variables:   " + std::to_string(names.size()) + "\n";
+    std::string missing;
+    for (const char* v : kWrfRequired)
+        if (!f.hasVariable(v))
+            missing += std::string(missing.empty() ? "" : ", ") + v;
+    if (!missing.empty())
+    {
+        s += "model:       not WRF output (missing " + missing + ")\n";
+        s += "=> `convert` will fail with exit code 7: no supported variables\n";
+        return s;
+    }
+    const NcFile::Variable q = f.variable("QCLOUD");
+    s += "model:       WRF";
+    if (q.shape.size() == 4)
+        s += ", " + std::to_string(q.shape[3]) + " x " + std::to_string(q.shape[2]) + " columns, " +
+             std::to_string(q.shape[1]) + " levels";
+    const std::optional<double> proj = f.globalNumber("MAP_PROJ");
+    const char* projNames[] = {"?", "Lambert conformal", "polar stereographic", "Mercator"};
+    if (proj && *proj >= 1 && *proj <= 3)
+        s += std::string(", ") + projNames[int(*proj)] + " projection";
+    s += "\nvalid times:\n";
+    for (const std::string& t : f.readStrings("Times"))
+        s += "  " + t + "\n";
+    s += "variables used:\n";
+    const std::pair<const char*, const char*> uses[] = {
+        {"XLAT", "latitude of columns -> resampling onto a regular lat/lon grid"},
+        {"XLONG", "longitude of columns -> resampling"},
+        {"PH", "perturbation geopotential -> level heights (PH+PHB)/g"},
+        {"PHB", "base geopotential -> level heights"},
+        {"QCLOUD", "cloud water -> cloudy levels, layer base/top/coverage"},
+        {"QICE", "cloud ice -> cloudy levels"},
+        {"QRAIN", "rain water -> water path (coverage)"},
+        {"U", "x-wind (staggered) -> layer winds"},
+        {"V", "y-wind (staggered) -> layer winds"},
+        {"P", "perturbation pressure -> air density"},
+        {"PB", "base pressure -> air density"},
+        {"T", "perturbation potential temperature -> air density"},
+        {"RAINC", "accumulated convective precipitation -> convective rate"},
+        {"RAINSH", "accumulated shallow-cumulus precipitation -> convective rate"},
+        {"RAINNC", "accumulated grid-scale precipitation -> large-scale rate"},
+        {"COSALPHA", "grid rotation -> earth-relative winds"},
+        {"SINALPHA", "grid rotation -> earth-relative winds"}};
+    std::string absent;
+    for (const auto& [name, use] : uses)
+    {
+        if (f.hasVariable(name))
+        {
+            char line[200];
+            std::snprintf(line, sizeof line, "  %-9s %s\n", name, use);
+            s += line;
+        }
+        else
+        {
+            absent += std::string(absent.empty() ? "" : ", ") + name;
+        }
+    }
+    s += "not found (used when present): " + (absent.empty() ? std::string("none") : absent) + "\n";
+    return s;
+}
+
+}  // namespace
+
+std::string describeFile(const std::string& path)
+{
+    return detectFormat(path) == InputFormat::Grib ? describeGrib(path) : describeNetCdf(path);
+}
+
+}  // namespace sky
