@@ -24,3 +24,19 @@ if(TARGET sky-ingest)
         set_tests_properties(ingest.cli.${case} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 60)
     endforeach()
 endif()
+
+# libFuzzer: built with clang by a separate project, then each target runs a few seconds on seeds.
+if(SKY_BUILD_INGEST)
+    set(SKY_INGEST_FUZZ_DIR ${CMAKE_CURRENT_BINARY_DIR}/ingest-fuzz)
+    get_filename_component(SKY_INGEST_ROOT ${CMAKE_CURRENT_LIST_DIR}/.. ABSOLUTE)
+    add_test(NAME ingest.fuzz.build
+             COMMAND bash ${SKY_INGEST_TEST_DIR}/fuzz_test.sh build ${SKY_INGEST_ROOT} ${SKY_INGEST_FUZZ_DIR})
+    set_tests_properties(ingest.fuzz.build PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600 FIXTURES_SETUP ingest_fuzz
+                         RUN_SERIAL ON)
+    foreach(target grib snapshot)
+        add_test(NAME ingest.fuzz.${target}
+                 COMMAND bash ${SKY_INGEST_TEST_DIR}/fuzz_test.sh ${target} ${SKY_INGEST_ROOT} ${SKY_INGEST_FUZZ_DIR} 8)
+        set_tests_properties(ingest.fuzz.${target} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 60
+                             FIXTURES_REQUIRED ingest_fuzz)
+    endforeach()
+endif()

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "weather_ingest/grib_file.h"
 
+#include "weather_ingest/grib_framing.h"
 #include "weather_ingest/ingest_error.h"
 
 #include <eccodes.h>
@@ -21,12 +22,10 @@ namespace
 constexpr double kMissingSentinel = 1.0e36;
 
 // ecCodes prints its own errors to stderr; ours name file, message and field, so its are dropped.
-// Multi-field support: NCEP packs u and v into one GRIB2 message; without it ecCodes returns only the first.
 void setUpEccodes()
 {
     static const bool once = [] {
         codes_context_set_logging_proc(codes_context_get_default(), [](const grib_context*, int, const char*) {});
-        codes_grib_multi_support_on(codes_context_get_default());
         return true;
     }();
     (void)once;
@@ -138,6 +137,16 @@ GridField GribMessage::decode(size_t maxCells) const
         throw IngestError(IngestErrorKind::TooLarge, file_, where, field,
                           "grid " + std::to_string(ni) + " x " + std::to_string(nj) + " is empty or exceeds " +
                               std::to_string(maxCells) + " points");
+    // ecCodes sizes its buffers from these keys without checking them against each other (a damaged
+    // message claiming 3e8 coded values for 12 points makes it allocate gigabytes), so they are checked here.
+    const long dataPoints = k.getLong("numberOfDataPoints", ni * nj);
+    const long codedValues = k.getLong("numberOfCodedValues", dataPoints);
+    const long bitsPerValue = k.getLong("bitsPerValue", 0);
+    if (dataPoints != ni * nj || codedValues < 0 || codedValues > dataPoints || bitsPerValue < 0 || bitsPerValue > 64)
+        throw IngestError(IngestErrorKind::Corrupt, file_, where, field,
+                          "inconsistent sizes: " + std::to_string(ni) + " x " + std::to_string(nj) + " grid, " +
+                              std::to_string(dataPoints) + " data points, " + std::to_string(codedValues) +
+                              " coded values, " + std::to_string(bitsPerValue) + " bits per value");
     size_t count = 0;
     k.check(codes_get_size(h, "values", &count), "values");
     if (count != size_t(ni) * size_t(nj))
@@ -215,45 +224,52 @@ GridField GribMessage::decode(size_t maxCells) const
     return out;
 }
 
-GribFile::GribFile(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "rb"))
+GribFile::GribFile(const std::string& path) : path_(path)
 {
-    if (!file_)
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+    if (!f)
         throw IngestError(IngestErrorKind::Io, path, "", "", std::string("cannot open: ") + std::strerror(errno));
     setUpEccodes();
-    if (std::fseek(file_.get(), 0, SEEK_END) == 0)
-        sizeBytes_ = std::ftell(file_.get());
-    std::rewind(file_.get());
+    char buf[1 << 16];
+    size_t n = 0;
+    while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0)
+        bytes_.insert(bytes_.end(), buf, buf + n);
+    if (std::ferror(f.get()))
+        throw IngestError(IngestErrorKind::Io, path, "", "", "read error");
 }
 
 GribFile::GribFile(const std::string& name, const void* data, size_t size)
-    : path_(name), file_(fmemopen(const_cast<void*>(data), size, "rb"))
+    : path_(name), bytes_(static_cast<const uint8_t*>(data), static_cast<const uint8_t*>(data) + size)
 {
-    if (!file_)
-        throw IngestError(IngestErrorKind::Io, name, "", "", "cannot read from memory");
     setUpEccodes();
-    sizeBytes_ = long(size);
-}
-
-double GribFile::fractionRead() const
-{
-    return sizeBytes_ > 0 ? std::clamp(double(std::ftell(file_.get())) / double(sizeBytes_), 0.0, 1.0) : 1.0;
 }
 
 GribFile::~GribFile() = default;
 
+double GribFile::fractionRead() const
+{
+    return bytes_.empty() ? 1.0 : double(offset_) / double(bytes_.size());
+}
+
 bool GribFile::next(GribMessage& message)
 {
-    int err = CODES_SUCCESS;
-    grib_handle* h = codes_handle_new_from_file(nullptr, file_.get(), PRODUCT_GRIB, &err);
     const int number = count_ + 1;
-    if (!h)
+    if (pending_.empty())
     {
-        if (err == CODES_SUCCESS || err == CODES_END_OF_FILE)
+        GribFrame frame;
+        std::string error;
+        const int found = nextGribFrame(bytes_.data(), bytes_.size(), offset_, frame, error);
+        if (found == 0)
             return false;
-        throw IngestError(IngestErrorKind::Corrupt, path_, messageLocation(number), "",
-                          std::string("ecCodes: ") + codes_get_error_message(err) +
-                              (err == CODES_PREMATURE_END_OF_FILE ? " (the file is truncated)" : ""));
+        if (found < 0)
+            throw IngestError(IngestErrorKind::Corrupt, path_, messageLocation(number), "", error);
+        for (std::vector<uint8_t>& field : frame.fields)
+            pending_.push_back(std::move(field));
     }
+    grib_handle* h = codes_handle_new_from_message_copy(nullptr, pending_.front().data(), pending_.front().size());
+    pending_.pop_front();
+    if (!h)
+        throw IngestError(IngestErrorKind::Corrupt, path_, messageLocation(number), "", "ecCodes cannot decode it");
     message.handle_.reset(h);
     message.file_ = path_;
     count_ = number;

@@ -6,9 +6,11 @@
 
 #include "weather_ingest/regular_grid.h"
 
-#include <cstdio>
+#include <cstdint>
+#include <deque>
 #include <memory>
 #include <string>
+#include <vector>
 
 struct grib_handle;  // ecCodes' codes_handle, kept opaque so that callers never include eccodes.h
 
@@ -65,14 +67,15 @@ private:
     GribMessageInfo info_;
 };
 
-/// A GRIB1/GRIB2 file read message by message.
+/// A GRIB1/GRIB2 file read message by message (a GRIB2 multi-field message counts as one message per
+/// field, as `grib_ls` counts them). The file is read into memory and framed by grib_framing.h first.
 class GribFile
 {
 public:
-    /// Opens a file. Throws IngestError(Io) when it cannot be opened.
+    /// Reads a file. Throws IngestError(Io) when it cannot be read.
     explicit GribFile(const std::string& path);
 
-    /// Reads GRIB from bytes in memory (the fuzzer's entry); the bytes must outlive the object.
+    /// Reads GRIB from bytes in memory (the fuzzer's entry); the bytes are copied.
     GribFile(const std::string& name, const void* data, size_t size);
 
     ~GribFile();
@@ -82,7 +85,7 @@ public:
     /// Reads the next message and its GribMessageInfo (values are decoded only by decode()).
     ///
     /// @return false at the end of the file. Throws IngestError(Corrupt) for a damaged message (e.g.
-    ///   truncated), naming the message number.
+    ///   truncated, sections that do not chain to the end marker), naming the message number.
     bool next(GribMessage& message);
 
     const std::string& path() const { return path_; }
@@ -92,14 +95,11 @@ public:
     double fractionRead() const;
 
 private:
-    struct FileCloser
-    {
-        void operator()(std::FILE* f) const { std::fclose(f); }
-    };
     std::string path_;
-    std::unique_ptr<std::FILE, FileCloser> file_;
+    std::vector<uint8_t> bytes_;
+    size_t offset_ = 0;
+    std::deque<std::vector<uint8_t>> pending_;  // fields of the current multi-field message
     int count_ = 0;
-    long sizeBytes_ = 0;
 };
 
 }  // namespace sky

@@ -54,23 +54,20 @@ private:
                 for (float& x : v)
                     x *= scale;
             s.addLevel(r->levelPa, v);
-            note(role, r);
+            note(r);
         }
         return s;
     }
 
-    void note(GribRole role, const GribRecord* r)
-    {
-        check_.invalidValues(r->field.invalidCount, r->info.label(), r->source);
-        used_.push_back({role, r});
-    }
+    /// Every record that is used has its undeclared NaN counted (an error unless lenient).
+    void note(const GribRecord* r) { check_.invalidValues(r->field.invalidCount, r->info.label(), r->source); }
 
     std::vector<float> coverage(const GribRecord* r)
     {
         std::vector<float> v = r->field.values;
         const float scale = r->info.units.find('%') != std::string::npos ? 0.01f : 1.0f;
         check_.coverage(v, scale, r->info.label(), r->source, grid_);
-        note(r->row.role, r);
+        note(r);
         return v;
     }
 
@@ -78,7 +75,7 @@ private:
     {
         std::vector<float> v = r->field.values;
         check_.range(v, lo, hi, r->info.label(), r->source, grid_);
-        note(r->row.role, r);
+        note(r);
         return v;
     }
 
@@ -118,7 +115,6 @@ private:
     ValueChecker check_;
     LatLonGrid grid_;
     LevelStack heightM_, windU_, windV_, cloudCover_;
-    std::vector<std::pair<GribRole, const GribRecord*>> used_;
     std::vector<float> ground_;  // ground altitude (m), for above-ground heights; may be empty
 };
 

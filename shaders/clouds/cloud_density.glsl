@@ -3,8 +3,8 @@
 // Included by cloud passes after the FrameBlock and the texture bindings.
 
 // Detail erosion fades out with distance: beyond this the detail noise is finer than a pixel.
-const float kDetailFadeStartM = 20000.0f;
-const float kDetailFadeEndM = 40000.0f;
+const float kDetailFadeStartM = 8000.0f;
+const float kDetailFadeEndM = 25000.0f;
 // Extinction relative to cloudLook.x per genus: stratiform decks are optically thinner per metre.
 float genusDensityScale(int cloudType)
 {
@@ -48,7 +48,7 @@ struct WeatherLookup
 WeatherLookup weatherLookup(vec2 mapPosM)
 {
     WeatherLookup w;
-    w.uv = mapPosM / (2.0f * frame.earth.w) + 0.5f;
+    w.uv = windowWarp(mapPosM, frame.earth.w, frame.earth.z) / (2.0f * frame.earth.w) + 0.5f;
     w.inside = all(greaterThanEqual(w.uv, vec2(0.0f))) && all(lessThan(w.uv, vec2(1.0f)));
     w.texel = clamp(ivec2(w.uv * float(WEATHER_WINDOW_SIZE)), ivec2(0), ivec2(WEATHER_WINDOW_SIZE - 1));
     return w;
@@ -59,7 +59,7 @@ float baseShapeAt(vec3 noisePos)
 {
     vec4 n = textureLod(baseNoise, noisePos / frame.noiseScale.x, 0.0f);
     float lowFreqFbm = n.y * 0.625f + n.z * 0.25f + n.w * 0.125f;
-    return saturate1(remapValue(n.x, lowFreqFbm - 1.0f, 1.0f, 0.0f, 1.0f));
+    return equalizeBaseShape(remapValue(n.x, lowFreqFbm - 1.0f, 1.0f, 0.0f, 1.0f));
 }
 
 float erodeAt(float density, vec3 noisePos, float hf, float distanceM)
@@ -116,14 +116,17 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         if (anvilSlab)
         {
             // The anvil: a flat slab spreading downwind of the tower top, thinning at its edges.
-            shape *= smoothstep(0.0f, 0.35f, hf) * (1.0f - smoothstep(0.55f, 1.0f, hf));
-            densityScale *= 0.5f;
+            shape *= smoothstep(0.0f, 0.3f, hf) * (1.0f - smoothstep(0.6f, 1.0f, hf));
+            densityScale *= 0.8f;
         }
         else
         {
             shape *= cloudHeightProfile(cloudType, hf);
             if (cloudType == CLOUD_TYPE_CUMULONIMBUS)
             {
+                // The tower narrows with height (towers are 5-10 km wide at mid level, the cell wider at
+                // the base); the anvil term then spreads the top again.
+                coverage *= 1.0f - 0.35f * smoothstep(0.3f, 0.75f, hf);
                 shape = anvilShape(shape, hf, range.z);
                 densityScale *= anvilDensity(hf) * 1.5f;
             }

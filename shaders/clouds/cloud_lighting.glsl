@@ -52,7 +52,9 @@ float lightOpticalDepth(vec3 p, vec3 lightDir, float distanceM)
 
 // Light scattered toward the eye per unit incident radiance: multiple-scattering octaves (Wrenninge
 // 2013, Hillaire 2016) of a two-lobe phase function, with Beer-powder darkening seen away from the light.
-float multipleScattering(float opticalDepth, float cosTheta)
+// The powder factor E(d)/e^-d = 2 (1 - e^-2d) is taken on the local optical depth over ~100 m (as Nubis
+// does with the sample density), so thin wisps and crevices darken while sunlit faces do not.
+float multipleScattering(float opticalDepth, float cosTheta, float localOpticalDepth)
 {
     float a = 1.0f;
     float b = 1.0f;
@@ -67,9 +69,9 @@ float multipleScattering(float opticalDepth, float cosTheta)
         b *= frame.lightingTerms.y;
         c *= frame.lightingTerms.z;
     }
-    float powderRatio = beerPowder(opticalDepth) / max(exp(-opticalDepth), 1e-6f);
+    float powder = 0.5f * beerPowder(localOpticalDepth) / max(exp(-localOpticalDepth), 1e-6f);
     float powderWeight = frame.lightingTerms.w * saturate1(0.5f - 0.5f * cosTheta);
-    return sum * mix(1.0f, powderRatio, powderWeight);
+    return sum * mix(1.0f, powder, powderWeight);
 }
 
 // Ambient light: sky above (brighter toward the top of the cloud) and ground bounce below.
@@ -90,14 +92,21 @@ void marchClouds(vec3 dir, float tEnter, float tExit, ivec2 pixel, inout vec3 ra
     float cosTheta = dot(dir, lightDir);
     float thickness = frame.shell.y - frame.shell.x;
     float baseStep = clamp(thickness / 64.0f, 30.0f, 250.0f);
-    const float growth = 0.015f;  // step = 1.5% of the distance far away
-    float jitter = texelFetch(blueNoise, pixel % BLUE_NOISE_SIZE, 0).x;
-    float t = tEnter + jitter * baseStep;
+    // Steps grow geometrically with distance, just fast enough to reach tExit within the step budget
+    // (long grazing paths through a layer get 1-10% steps; short ones keep the base step).
+    float ratio = max(tExit, 1.0f) / max(tEnter + baseStep, baseStep);
+    float growth = clamp(pow(ratio, 1.0f / float(frame.march.x)) - 1.0f, 0.005f, 0.015f);
+    // Blue-noise start offset, decorrelated per frame by the golden ratio (temporal accumulation).
+    float jitter = fract(texelFetch(blueNoise, pixel % BLUE_NOISE_SIZE, 0).x + 0.61803399f * float(frame.image.z));
+    float t = tEnter + jitter * max(baseStep, tEnter * growth);
     bool full = false;
     int emptyFull = 0;
+    uint fullSamples = 0u;
     bool lit = false;
     vec3 lightAtCloud = vec3(0.0f);
-    for (uint i = 0u; i < frame.march.x && t < tExit; ++i)
+    // The budget counts full samples; cheap samples (no detail, no light march) may take as many again.
+    float lastEmptyT = tEnter;  // the last sample that found no cloud
+    for (uint i = 0u; i < 2u * frame.march.x && fullSamples < frame.march.x && t < tExit; ++i)
     {
         float dt = max(baseStep, t * growth);
         vec3 p = dir * t;
@@ -110,16 +119,42 @@ void marchClouds(vec3 dir, float tEnter, float tExit, ivec2 pixel, inout vec3 ra
                 t = max(tEnter, t - dt);
             }
             else
+            {
+                lastEmptyT = t;
                 t += 2.0f * dt;
+            }
             continue;
         }
         DensitySample ds = cloudDensity(p, false, t);
+        ++fullSamples;
         if (ds.density <= 0.0f)
         {
+            lastEmptyT = t;
             if (++emptyFull >= 6)
                 full = false;
             t += dt;
             continue;
+        }
+        if (t - lastEmptyT > 60.0f && lastEmptyT < t)
+        {
+            // Entering a cloud with long steps: find its surface by bisection, so that the sunlit skin
+            // (a mean free path is ~20 m) is lit and not a point hundreds of metres inside it.
+            float lo = lastEmptyT;
+            float hi = t;
+            for (int b = 0; b < 5; ++b)
+            {
+                float mid = 0.5f * (lo + hi);
+                if (cloudDensity(dir * mid, true, mid).density > 0.0f)
+                    hi = mid;
+                else
+                    lo = mid;
+            }
+            t = hi;
+            p = dir * t;
+            ds = cloudDensity(p, false, t);
+            lastEmptyT = t;
+            if (ds.density <= 0.0f)
+                continue;
         }
         emptyFull = 0;
         float sigmaS = ds.density * frame.cloudLook.x;
@@ -131,8 +166,10 @@ void marchClouds(vec3 dir, float tEnter, float tExit, ivec2 pixel, inout vec3 ra
             lightAtCloud = keyLightAt(p, lightDir);
             lit = true;
         }
-        float lightDepth = lightOpticalDepth(p, lightDir, t);
-        vec3 source = sigmaS * (lightAtCloud * multipleScattering(lightDepth, cosTheta) + ambientLight(ds.heightFraction));
+        // Light the part of the step that the eye sees: within ~one mean free path of its start.
+        vec3 lightPoint = p + dir * min(0.5f * dt, 1.0f / sigmaE);
+        float lightDepth = lightOpticalDepth(lightPoint, lightDir, t);
+        vec3 source = sigmaS * (lightAtCloud * multipleScattering(lightDepth, cosTheta, sigmaS * 100.0f) + ambientLight(ds.heightFraction));
         radiance += transmittance * integrateScattering(source, sigmaE, dt);
         float next = transmittance * exp(-sigmaE * dt);
         depthWeighted += (transmittance - next) * t;

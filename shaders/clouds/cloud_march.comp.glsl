@@ -13,6 +13,7 @@
 #include "shaders/lib/cloud_shape.glsl"
 #include "shaders/lib/phase.glsl"
 #include "shaders/lib/atmosphere.glsl"
+#include "shaders/lib/window_warp.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE_2D, local_size_y = WORKGROUP_SIZE_2D) in;
 

@@ -15,7 +15,7 @@ uvec2 permutedPixel(uvec2 globalId)
 // Unit view direction (ENU) through the centre of `pixelCentre` (pixels, y down).
 vec3 viewRayDirection(vec2 pixelCentre)
 {
-    vec2 ndc = pixelCentre / vec2(frame.image.xy) * 2.0f - 1.0f;
+    vec2 ndc = (pixelCentre + frame.exposure.zw) / vec2(frame.image.xy) * 2.0f - 1.0f;
     vec3 d = frame.cameraForward.xyz + ndc.x * frame.cameraRight.w * frame.cameraRight.xyz -
              ndc.y * frame.cameraUp.w * frame.cameraUp.xyz;
     return normalize(d);

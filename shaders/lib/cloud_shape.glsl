@@ -18,11 +18,11 @@ float saturate1(float v)
 vec2 cloudTypeProfileShape(int cloudType)
 {
     if (cloudType == CLOUD_TYPE_STRATUS)
-        return vec2(0.10f, 0.65f);
+        return vec2(0.10f, 0.70f);
     if (cloudType == CLOUD_TYPE_STRATOCUMULUS)
-        return vec2(0.15f, 0.55f);
+        return vec2(0.12f, 0.50f);
     if (cloudType == CLOUD_TYPE_CUMULUS)
-        return vec2(0.07f, 0.35f);
+        return vec2(0.08f, 0.60f);
     if (cloudType == CLOUD_TYPE_CUMULONIMBUS)
         return vec2(0.04f, 0.80f);
     if (cloudType == CLOUD_TYPE_NIMBOSTRATUS)
@@ -59,12 +59,30 @@ float anvilDensity(float h)
     return bottom * top;
 }
 
-// Schneider's coverage: remap(base, 1 - coverage, 1, 0, 1) * coverage.
+// The base shape remap(R, lowFreqFbm - 1, 1, 0, 1) of our 128^3 noise is close to normal with this
+// mean and spread (measured over the texture; tests/unit/test_cloud_math.cpp keeps them true). Mapping
+// it through the normal CDF (logistic approximation, Bowling et al. 2009: 1.702) makes it uniform in
+// [0,1], so that a coverage c leaves a cloud fraction of about c where the height profile is 1.
+SKY_CONST float BASE_SHAPE_MEAN = 0.8305f;
+SKY_CONST float BASE_SHAPE_SD = 0.0418f;
+
+float equalizeBaseShape(float shape)
+{
+    return 1.0f / (1.0f + exp(-1.702f * (shape - BASE_SHAPE_MEAN) / BASE_SHAPE_SD));
+}
+
+// Coverage (after Schneider 2015, remap(base, 1 - coverage, 1, 0, 1)): the shape must exceed 1 - coverage
+// to be cloud, so with a uniform shape the cloud fraction equals the coverage. Density then rises over
+// the next 0.25 of shape instead of the whole remaining range, so that full coverage is a solid deck and
+// not a sponge, while edges stay soft.
+SKY_CONST float COVERAGE_SOFTNESS = 0.25f;
+
 float applyCoverage(float baseShape, float coverage)
 {
     if (coverage <= 0.0f)
         return 0.0f;
-    return saturate1(remapValue(baseShape, 1.0f - coverage, 1.0f, 0.0f, 1.0f)) * coverage;
+    float threshold = 1.0f - coverage;
+    return saturate1(remapValue(baseShape, threshold, threshold + COVERAGE_SOFTNESS, 0.0f, 1.0f));
 }
 
 // Detail erosion: wispy (inverted detail) at the base, billowy at the top (Schneider 2015).

@@ -16,7 +16,7 @@ struct FrameParams
     vec4 cameraRight;    // xyz: unit right axis (ENU); w: tan(fovY/2) * width/height
     vec4 cameraUp;       // xyz: unit up axis (ENU); w: tan(fovY/2)
     vec4 cameraForward;  // xyz: unit view axis (ENU); w: eye altitude above the ellipsoid (m)
-    vec4 earth;          // x: local earth radius R (m); y: R + eye altitude (m); z: window texel size (m); w: window half extent (m)
+    vec4 earth;          // x: local earth radius R (m); y: R + eye altitude (m); z: window warp radius r0 (m, window_warp.glsl); w: window half extent (m)
     vec4 shell;          // x: lowest cloud base in the window (m); y: highest volumetric top (m); z: max march distance (m); w: high-cloud altitude (m)
     vec4 sunDirection;   // xyz: unit direction to the sun (ENU); w: sun angular radius (rad)
     vec4 sunIrradiance;  // rgb: solar irradiance at the top of the atmosphere (renderer units); w: unused
@@ -34,8 +34,8 @@ struct FrameParams
     vec4 phaseTerms;     // x: forward g; y: back g; z: forward weight; w: cone light step (m)
     vec4 ambientSky;     // rgb: average sky radiance above the clouds; w: ground albedo
     vec4 ambientGround;  // rgb: irradiance on the ground (for light bounced up into cloud bases); w: unused
-    vec4 exposure;       // x: exposure multiplier; y: animation time (s); z: unused; w: unused
-    uvec4 image;         // x: width; y: height; z: frame index; w: flags (FRAME_FLAG_*)
+    vec4 exposure;       // x: display exposure multiplier; y: animation time (s); zw: sub-pixel jitter of the view rays (pixels)
+    uvec4 image;         // x: width; y: height; z: frame index (decorrelates the march jitter); w: flags (FRAME_FLAG_*)
     uvec4 march;         // x: max view steps; y: light samples (cone); z: unused; w: unused
 };
 

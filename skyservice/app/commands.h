@@ -32,6 +32,7 @@ struct CommonRenderOptions
     std::string quality = "high";   ///< preset: high | medium | test
     uint32_t seed = 1;
     int steps = 0;                  ///< overrides the preset's view steps when > 0
+    int accumulate = 0;             ///< overrides the preset's accumulated frames when > 0
 };
 
 struct RenderCommandOptions

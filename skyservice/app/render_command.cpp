@@ -19,6 +19,8 @@ void addCommonOptions(CLI::App& app, CommonRenderOptions& o)
     app.add_option("--quality", o.quality, "Preset: high | medium | test")->check(CLI::IsMember({"high", "medium", "test"}));
     app.add_option("--seed", o.seed, "Noise seed (same seed, same clouds)");
     app.add_option("--steps", o.steps, "Maximum view samples per ray (overrides the preset)")->check(CLI::Range(8, 4096));
+    app.add_option("--accumulate", o.accumulate, "Frames averaged per picture, each with new jitter (overrides the preset)")
+        ->check(CLI::Range(1, 64));
 }
 
 bool qualityFromOptions(const CommonRenderOptions& o, QualitySettings& q, std::string& error)
@@ -41,8 +43,12 @@ bool qualityFromOptions(const CommonRenderOptions& o, QualitySettings& q, std::s
         error = "--quality " + o.quality + ": expected high, medium or test";
         return false;
     }
+    if (o.quality == "high")
+        q.accumulationFrames = 4;
     if (o.steps > 0)
         q.maxViewSteps = uint32_t(o.steps);
+    if (o.accumulate > 0)
+        q.accumulationFrames = uint32_t(o.accumulate);
     q.noiseSeed = o.seed;
     return true;
 }

@@ -39,9 +39,9 @@ std::vector<ShowcaseView> showcaseViews()
         {"cumulus-midday", "Scattered cumulus at midday from 600 m",
          {kBuiltinCumulusLatDeg - 0.35, kBuiltinCumulusLonDeg, 600.0, 10.0, 8.0, 0.0}, 60.0, "2026-06-21T11:30:00Z"},
         {"cumulonimbus-40km", "Cumulonimbus and anvil from 40 km",
-         {cbLat, cbLon - lonOffsetDeg(40000.0, cbLat), 1500.0, 90.0, 12.0, 0.0}, 60.0, "2026-06-21T15:00:00Z"},
+         {cbLat, cbLon - lonOffsetDeg(40000.0, cbLat), 4500.0, 90.0, 6.0, 0.0}, 60.0, "2026-06-21T15:00:00Z"},
         {"deck-sunset", "Sunset over the stratocumulus deck",
-         {kBuiltinDeckLatDeg, kBuiltinDeckLonDeg + 0.6, 2600.0, 300.0, 1.0, 0.0}, 60.0, "2026-06-21T19:35:00Z"},
+         {kBuiltinDeckLatDeg, kBuiltinDeckLonDeg + 0.6, 2600.0, 300.0, 1.0, 0.0}, 60.0, "2026-06-21T19:15:00Z"},
         {"deck-above-11000m", "The deck from 11 000 m: the earth's curvature",
          {kBuiltinDeckLatDeg, kBuiltinDeckLonDeg + 1.0, 11000.0, 250.0, -8.0, 0.0}, 70.0, "2026-06-21T09:30:00Z"},
     };

@@ -182,14 +182,14 @@ void resampleRows(const ResampleJob& job, uint32_t firstRow, uint32_t endRow)
 
     for (uint32_t j = firstRow; j < endRow; ++j)
     {
-        const double northingM = out.texelNorthingM(j);
         for (uint32_t i = 0; i < sizeTexels; ++i)
         {
             double latDeg = 0;
             double lonDeg = 0;
             double azimuthDeg = 0;
             double scale = 0;
-            projection.Reverse(job.centreLatDeg, job.centreLonDeg, out.texelEastingM(i), northingM, latDeg, lonDeg,
+            const glm::dvec2 position = out.texelPositionM(i, j);
+            projection.Reverse(job.centreLatDeg, job.centreLonDeg, position.x, position.y, latDeg, lonDeg,
                                azimuthDeg, scale);
             const GridSample s = sampler.sample(latDeg, lonDeg);
             const float capeJKg = interpolate(snapshot.capeJKg, s, cells, 0.0f);
@@ -231,7 +231,7 @@ constexpr uint32_t kMaxWorkers = 8;
 }  // namespace
 
 void resampleWeatherWindow(const WeatherSnapshot& snapshot, double centreLatDeg, double centreLonDeg,
-                           double halfExtentM, WeatherWindow& out, uint32_t sizeTexels)
+                           double halfExtentM, WeatherWindow& out, uint32_t sizeTexels, double warpRadiusM)
 {
     assert(snapshot.grid.nLat >= 1 && snapshot.grid.nLon >= 1 && snapshot.grid.dLonDeg > 0.0);
     assert(halfExtentM > 0.0 && sizeTexels >= 1);
@@ -240,6 +240,8 @@ void resampleWeatherWindow(const WeatherSnapshot& snapshot, double centreLatDeg,
     out.centreLonDeg = centreLonDeg;
     out.sizeTexels = sizeTexels;
     out.texelSizeM = 2.0 * halfExtentM / double(sizeTexels);
+    out.halfExtentM = halfExtentM;
+    out.warpRadiusM = warpRadiusM;
     out.texels.assign(size_t(WEATHER_WINDOW_SLICES) * sizeTexels * sizeTexels, glm::vec4(0.0f));
 
     const GridSampler sampler(snapshot.grid);
@@ -271,6 +273,27 @@ void resampleWeatherWindow(const WeatherSnapshot& snapshot, double centreLatDeg,
     resampleRows(job, 0, std::min(rowsPerWorker, sizeTexels));
     for (std::thread& thread : threads)
         thread.join();
+}
+
+glm::dvec2 windowWarpM(const glm::dvec2& pM, double halfExtentM, double warpRadiusM)
+{
+    if (warpRadiusM <= 0.0)
+        return pM;
+    return pM * ((halfExtentM + warpRadiusM) / (glm::length(pM) + warpRadiusM));
+}
+
+glm::dvec2 windowUnwarpM(const glm::dvec2& qM, double halfExtentM, double warpRadiusM)
+{
+    if (warpRadiusM <= 0.0)
+        return qM;
+    // Corners of the square beyond E + r0 have no finite preimage: send them 20 000 km away.
+    double denominator = std::max(halfExtentM + warpRadiusM - glm::length(qM), warpRadiusM * 1e-3);
+    return qM * (warpRadiusM / denominator);
+}
+
+glm::dvec2 WeatherWindow::texelPositionM(uint32_t i, uint32_t j) const
+{
+    return windowUnwarpM(glm::dvec2(texelEastingM(i), texelNorthingM(j)), halfExtentM, warpRadiusM);
 }
 
 }  // namespace sky

@@ -31,7 +31,9 @@ struct WeatherWindow
 {
     double centreLatDeg = 0;  ///< latitude of the projection centre (degrees)
     double centreLonDeg = 0;  ///< longitude of the projection centre (degrees)
-    double texelSizeM = 0;    ///< texel edge length in the projection plane (meters)
+    double texelSizeM = 0;    ///< texel edge length in the (warped) window plane (meters)
+    double halfExtentM = 0;   ///< half width of the window (meters): points up to this far are inside
+    double warpRadiusM = 0;   ///< radial warp r0 (meters, 0 = none): see windowWarpM() below
     uint32_t sizeTexels = 0;  ///< texels per side (WEATHER_WINDOW_SIZE unless a test asks otherwise)
     /// WEATHER_WINDOW_SLICES slices of sizeTexels^2 texels: slice-major, then row (northing j), then
     /// column (easting i). Channel meaning per slice: shaders/shared/weather_window.h. The resampler
@@ -43,11 +45,24 @@ struct WeatherWindow
         return (size_t(slice) * sizeTexels + j) * sizeTexels + i;
     }
     const glm::vec4& at(uint32_t slice, uint32_t i, uint32_t j) const { return texels[index(slice, i, j)]; }
-    /// Easting (meters) of the centre of column i, from the projection centre.
+    /// Window-plane easting (meters) of the centre of column i; the true easting when warpRadiusM = 0.
     double texelEastingM(uint32_t i) const { return (double(i) + 0.5 - 0.5 * double(sizeTexels)) * texelSizeM; }
-    /// Northing (meters) of the centre of row j, from the projection centre.
+    /// Window-plane northing (meters) of the centre of row j; the true northing when warpRadiusM = 0.
     double texelNorthingM(uint32_t j) const { return (double(j) + 0.5 - 0.5 * double(sizeTexels)) * texelSizeM; }
+    /// True position (easting, northing in the azimuthal equidistant projection, meters) of texel (i, j).
+    glm::dvec2 texelPositionM(uint32_t i, uint32_t j) const;
 };
+
+/**
+ * The radial warp of the window (shaders/lib/window_warp.glsl is the same formula in float):
+ * q = p (E + r0) / (|p| + r0) for a point p at distance |p| from the eye, with E the half extent and r0
+ * the warp radius. It keeps q = p at |p| = E and magnifies the centre by (E + r0) / r0, so texels are
+ * fine near the eye (0.99 km at E = 800 km, r0 = 150 km, 256 texels) and coarse at the horizon (40 km).
+ * With r0 = 0 there is no warp.
+ */
+glm::dvec2 windowWarpM(const glm::dvec2& pM, double halfExtentM, double warpRadiusM);
+/// The inverse of windowWarpM; plane points at or beyond E + r0 (the window's corners) map far away.
+glm::dvec2 windowUnwarpM(const glm::dvec2& qM, double halfExtentM, double warpRadiusM);
 
 /// Tropopause altitude used where the snapshot has none: the ICAO standard atmosphere's 11 km
 /// (ISO 2533:1975).
@@ -63,6 +78,7 @@ inline constexpr float kDefaultTropopauseAltitudeM = 11000.0f;
  *   size is 2 halfExtentM / sizeTexels.
  * @param[out] out the window; its texels vector is resized (and reused when it has the right size).
  * @param[in] sizeTexels texels per side (default WEATHER_WINDOW_SIZE; smaller sizes are for tests).
+ * @param[in] warpRadiusM radial warp r0 (meters; 0 = uniform texels), see windowWarpM().
  *
  * Each texel centre is projected back to latitude and longitude exactly, with GeographicLib's
  * AzimuthalEquidistant::Reverse on WGS84 (a geodesic direct problem, ~1.3 us). Rows are shared out
@@ -71,6 +87,7 @@ inline constexpr float kDefaultTropopauseAltitudeM = 11000.0f;
  * threads (H100 host, 16 cores). Not thread-safe on the same `out`.
  **********************************************************************/
 void resampleWeatherWindow(const WeatherSnapshot& snapshot, double centreLatDeg, double centreLonDeg,
-                           double halfExtentM, WeatherWindow& out, uint32_t sizeTexels = WEATHER_WINDOW_SIZE);
+                           double halfExtentM, WeatherWindow& out, uint32_t sizeTexels = WEATHER_WINDOW_SIZE,
+                           double warpRadiusM = 0.0);
 
 }  // namespace sky

@@ -98,10 +98,19 @@ LightingEstimate estimateLighting(Renderer& r, const CameraFrame& camera, const 
     e.groundIrradiance = direct(sunMoon.sun.directionEnu, e.sunIrradiance) +
                          direct(sunMoon.moon.directionEnu, moonIrr) + M_PI * e.ambientSkyRadiance;
 
-    // Exposure: a white Lambertian surface in this light maps to ~1.2 before tone mapping. Below the
-    // floor (deep twilight, moonlight) the picture is allowed to go dark, as the eye sees it.
-    double whiteRadiance = glm::dot(e.groundIrradiance, glm::dvec3(0.2126, 0.7152, 0.0722)) / M_PI;
-    const double kNightFloorRadiance = 1e-5;
+    // Exposure: a white cloud facing the light maps to ~1.2 before tone mapping. The light is measured
+    // at cloud level at normal incidence (a horizontal ground sees almost nothing at sunset, a cloud's
+    // side sees the whole red sun), plus the sky. Below the floor (deep twilight, moonlight) the picture
+    // is allowed to go dark, as the eye sees it.
+    auto normalIncidence = [&](const glm::dvec3& dir, const glm::dvec3& irradiance) {
+        float mu = float(std::max(dir.z, -0.2));
+        return irradiance * toD(sampleTransmittanceCpu(r.cpuAtmosphere, float(R) + cloudAltitudeM, mu));
+    };
+    glm::dvec3 keyLight = normalIncidence(sunMoon.sun.directionEnu, e.sunIrradiance) +
+                          normalIncidence(sunMoon.moon.directionEnu, moonIrr);
+    double whiteRadiance =
+        glm::dot(0.6 * keyLight + M_PI * e.ambientSkyRadiance, glm::dvec3(0.2126, 0.7152, 0.0722)) / M_PI;
+    const double kNightFloorRadiance = 2e-6;
     e.exposure = 1.2 / std::max(whiteRadiance, kNightFloorRadiance);
     return e;
 }

@@ -60,8 +60,7 @@ FrameParams makeFrameParams(const FrameInputs& in)
     f.cameraUp = v4(cam.upEnu, tanHalf);
     f.cameraForward = v4(cam.forwardEnu, cam.eye.altitudeM);
     double R = cam.localEarthRadiusM;
-    f.earth = vec4(float(R), float(R + cam.eye.altitudeM), float(in.window->texelSizeM),
-                   float(in.window->texelSizeM * in.window->sizeTexels / 2.0));
+    f.earth = vec4(float(R), float(R + cam.eye.altitudeM), float(in.window->warpRadiusM), float(in.window->halfExtentM));
 
     float minBase = 1e9f, maxTop = -1e9f;
     for (int k = 0; k < MAX_CLOUD_LAYERS; ++k)

@@ -29,15 +29,17 @@ struct QualitySettings
     double phaseBackG = -0.3;        ///< back lobe
     double phaseForwardWeight = 0.7; ///< share of the forward lobe
     double coneStepM = 70.0;         ///< first light step (m); step i is (i+1) times this
-    double baseNoisePeriodM = 12000.0;   ///< metres covered by one tile of the 128^3 base noise
+    double baseNoisePeriodM = 6000.0;    ///< metres covered by one tile of the 128^3 base noise
     double detailNoisePeriodM = 1500.0;  ///< one tile of the 32^3 detail noise
     double curlNoisePeriodM = 6000.0;    ///< one tile of the curl noise
     double highNoisePeriodM = 24000.0;   ///< one tile of the high-cloud texture
     double windowHalfExtentM = 800000.0; ///< weather window half width (covers the horizon at 12 km)
+    double windowWarpRadiusM = 150000.0; ///< radial warp r0: ~1 km texels at the eye, ~40 km at the edge
     double maxDistanceM = 700000.0;      ///< no cloud marched beyond this distance
     uint32_t noiseSeed = 1;              ///< seed of every noise texture
     bool detail = true;                  ///< detail erosion on
     bool highCloud = true;               ///< cirrus layer on
+    uint32_t accumulationFrames = 1;     ///< frames averaged, each with new march jitter and sub-pixel offset
 };
 
 /// One view to render.

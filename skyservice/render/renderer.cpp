@@ -8,7 +8,10 @@
 #include "skyservice/render/frame_setup.h"
 #include "skyservice/sky/blue_noise.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <glm/gtc/packing.hpp>
 #include <cstring>
 
 namespace sky
@@ -110,6 +113,81 @@ SkyStatus checkRequest(const ViewRequest& req)
     return SkyStatus::success();
 }
 
+double halton(uint32_t index, uint32_t base)
+{
+    double f = 1.0, r = 0.0;
+    for (uint32_t i = index; i > 0; i /= base)
+    {
+        f /= base;
+        r += f * double(i % base);
+    }
+    return r;
+}
+
+void accumulate(const std::vector<uint16_t>& halves, std::vector<double>& sum)
+{
+    sum.resize(halves.size());
+    for (size_t i = 0; i < halves.size(); ++i)
+        sum[i] += double(glm::unpackHalf1x16(halves[i]));
+}
+
+std::vector<uint16_t> average(const std::vector<double>& sum, uint32_t frames)
+{
+    std::vector<uint16_t> out(sum.size());
+    for (size_t i = 0; i < sum.size(); ++i)
+        out[i] = glm::packHalf1x16(float(sum[i] / frames));
+    return out;
+}
+
+// One frame on the GPU: sky-view LUT, cloud march, composite, then the readback of every image.
+SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame& camera, const SunMoon& sunMoon,
+                     const FrameInputs& in, RenderResult& result)
+{
+    OneShot shot;
+    SKY_TRY(beginOneShot(r.ctx, shot));
+    VkCommandBuffer cmd = shot.cmd;
+    vkCmdResetQueryPool(cmd, r.timestamps, 0, kTsCount);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r.timestamps, kTsStart);
+    recordAtmosphere(r, cmd, camera, sunMoon, in);
+    computeBarrier(cmd);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsSkyView);
+    dispatch(r.ctx, cmd, r.cloudProgram, request.width, request.height, 1, nullptr, 0,
+             {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.atmosphereUniforms),
+              DescriptorInfo(r.weatherWindowImage, r.linearClamp), DescriptorInfo(r.baseNoise, r.linearRepeat),
+              DescriptorInfo(r.detailNoise, r.linearRepeat), DescriptorInfo(r.curlNoise, r.linearRepeat),
+              DescriptorInfo(r.blueNoise, r.nearestRepeat), DescriptorInfo(r.transmittanceLut, r.linearClamp),
+              DescriptorInfo(r.cloudImage), DescriptorInfo(r.depthImage)});
+    computeBarrier(cmd);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsClouds);
+    recordComposite(r, cmd, request);
+    computeBarrier(cmd);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsComposite);
+    SKY_TRY(endOneShot(r.ctx, shot));
+
+    uint64_t ts[kTsCount] = {};
+    if (r.ctx.timestampPeriodNs > 0 &&
+        vkGetQueryPoolResults(r.ctx.device, r.timestamps, 0, kTsCount, sizeof ts, ts, sizeof(uint64_t),
+                              VK_QUERY_RESULT_64_BIT) == VK_SUCCESS)
+    {
+        auto ms = [&](uint32_t a, uint32_t b) { return double(ts[b] - ts[a]) * r.ctx.timestampPeriodNs * 1e-6; };
+        result.gpuMs["sky"] = ms(kTsStart, kTsSkyView);
+        result.gpuMs["clouds"] = ms(kTsSkyView, kTsClouds);
+        result.gpuMs["composite"] = ms(kTsClouds, kTsComposite);
+        result.gpuMs["total"] = ms(kTsStart, kTsComposite);
+    }
+    std::vector<uint8_t> bytes;
+    SKY_TRY(readbackImage(r.ctx, r.memory, r.cloudImage, bytes));
+    result.cloudRgbaHalf.resize(bytes.size() / 2);
+    std::memcpy(result.cloudRgbaHalf.data(), bytes.data(), bytes.size());
+    SKY_TRY(readbackImage(r.ctx, r.memory, r.depthImage, bytes));
+    result.cloudDepthM.resize(bytes.size() / 4);
+    std::memcpy(result.cloudDepthM.data(), bytes.data(), bytes.size());
+    SKY_TRY(readbackImage(r.ctx, r.memory, r.linearImage, bytes));
+    result.linearRgbaHalf.resize(bytes.size() / 2);
+    std::memcpy(result.linearRgbaHalf.data(), bytes.data(), bytes.size());
+    return readbackImage(r.ctx, r.memory, r.displayImage, result.displayRgba8);
+}
+
 }  // namespace
 
 SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
@@ -201,7 +279,8 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
 
     CameraFrame camera = computeCameraFrame(request.pose);
     SunMoon sunMoon = computeSunMoon(request.unixTimeS, camera.eye.latDeg, camera.eye.lonDeg, camera.eye.altitudeM);
-    resampleWeatherWindow(r.weather, camera.eye.latDeg, camera.eye.lonDeg, quality.windowHalfExtentM, r.window);
+    resampleWeatherWindow(r.weather, camera.eye.latDeg, camera.eye.lonDeg, quality.windowHalfExtentM, r.window,
+                          WEATHER_WINDOW_SIZE, quality.windowWarpRadiusM);
     computeAnvils(r.window);
     r.windowSummary = summarizeWindow(r.window);
     SKY_TRY(uploadImage(r.ctx, r.memory, r.weatherWindowImage, r.window.texels.data(),
@@ -226,57 +305,57 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     in.groundAlbedo = light.groundAlbedo;
     in.exposure = 1.0;
     FrameParams params = makeFrameParams(in);
-    std::memcpy(r.frameUniforms.mapped, &params, sizeof params);
     result.cpuSetupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
 
-    OneShot shot;
-    SKY_TRY(beginOneShot(r.ctx, shot));
-    VkCommandBuffer cmd = shot.cmd;
-    vkCmdResetQueryPool(cmd, r.timestamps, 0, kTsCount);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r.timestamps, kTsStart);
-    recordAtmosphere(r, cmd, camera, sunMoon, in);
-    computeBarrier(cmd);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsSkyView);
-
-    dispatch(r.ctx, cmd, r.cloudProgram, request.width, request.height, 1, nullptr, 0,
-             {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.atmosphereUniforms),
-              DescriptorInfo(r.weatherWindowImage, r.linearClamp), DescriptorInfo(r.baseNoise, r.linearRepeat),
-              DescriptorInfo(r.detailNoise, r.linearRepeat), DescriptorInfo(r.curlNoise, r.linearRepeat),
-              DescriptorInfo(r.blueNoise, r.nearestRepeat), DescriptorInfo(r.transmittanceLut, r.linearClamp),
-              DescriptorInfo(r.cloudImage), DescriptorInfo(r.depthImage)});
-    computeBarrier(cmd);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsClouds);
-    recordComposite(r, cmd, request);
-    computeBarrier(cmd);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsComposite);
-    SKY_TRY(endOneShot(r.ctx, shot));
-
-    uint64_t ts[kTsCount] = {};
+    // Accumulation: each frame has new march jitter (frame index) and a sub-pixel offset (Halton 2,3);
+    // the frames are averaged on the host. One frame is the plain render.
+    uint32_t frames = std::max(1u, quality.accumulationFrames);
     result.gpuMs.clear();
-    if (r.ctx.timestampPeriodNs > 0 &&
-        vkGetQueryPoolResults(r.ctx.device, r.timestamps, 0, kTsCount, sizeof ts, ts, sizeof(uint64_t),
-                              VK_QUERY_RESULT_64_BIT) == VK_SUCCESS)
-    {
-        auto ms = [&](uint32_t a, uint32_t b) { return double(ts[b] - ts[a]) * r.ctx.timestampPeriodNs * 1e-6; };
-        result.gpuMs["sky"] = ms(kTsStart, kTsSkyView);
-        result.gpuMs["clouds"] = ms(kTsSkyView, kTsClouds);
-        result.gpuMs["composite"] = ms(kTsClouds, kTsComposite);
-        result.gpuMs["total"] = ms(kTsStart, kTsComposite);
-    }
-
-    std::vector<uint8_t> bytes;
     result.width = request.width;
     result.height = request.height;
-    SKY_TRY(readbackImage(r.ctx, r.memory, r.cloudImage, bytes));
-    result.cloudRgbaHalf.resize(bytes.size() / 2);
-    std::memcpy(result.cloudRgbaHalf.data(), bytes.data(), bytes.size());
-    SKY_TRY(readbackImage(r.ctx, r.memory, r.depthImage, bytes));
-    result.cloudDepthM.resize(bytes.size() / 4);
-    std::memcpy(result.cloudDepthM.data(), bytes.data(), bytes.size());
-    SKY_TRY(readbackImage(r.ctx, r.memory, r.linearImage, bytes));
-    result.linearRgbaHalf.resize(bytes.size() / 2);
-    std::memcpy(result.linearRgbaHalf.data(), bytes.data(), bytes.size());
-    SKY_TRY(readbackImage(r.ctx, r.memory, r.displayImage, result.displayRgba8));
+    std::vector<double> cloudSum, linearSum, displaySum, depthSum, depthWeight;
+    for (uint32_t k = 0; k < frames; ++k)
+    {
+        params.image.z = k;
+        params.exposure.z = frames > 1 ? float(halton(k + 1, 2) - 0.5) : 0.0f;
+        params.exposure.w = frames > 1 ? float(halton(k + 1, 3) - 0.5) : 0.0f;
+        std::memcpy(r.frameUniforms.mapped, &params, sizeof params);
+        RenderResult one;
+        SKY_TRY(renderOnce(r, request, camera, sunMoon, in, one));
+        for (const auto& [pass, ms] : one.gpuMs)
+            result.gpuMs[pass] += ms / frames;
+        accumulate(one.cloudRgbaHalf, cloudSum);
+        accumulate(one.linearRgbaHalf, linearSum);
+        displaySum.resize(one.displayRgba8.size());
+        for (size_t i = 0; i < one.displayRgba8.size(); ++i)
+            displaySum[i] += one.displayRgba8[i];
+        depthSum.resize(one.cloudDepthM.size());
+        depthWeight.resize(one.cloudDepthM.size());
+        for (size_t i = 0; i < one.cloudDepthM.size(); ++i)
+        {
+            double a = glm::unpackHalf1x16(one.cloudRgbaHalf[i * 4 + 3]);
+            depthSum[i] += a * double(one.cloudDepthM[i]);
+            depthWeight[i] += a;
+        }
+        if (frames == 1)
+        {
+            result.cloudRgbaHalf = std::move(one.cloudRgbaHalf);
+            result.linearRgbaHalf = std::move(one.linearRgbaHalf);
+            result.displayRgba8 = std::move(one.displayRgba8);
+            result.cloudDepthM = std::move(one.cloudDepthM);
+        }
+    }
+    if (frames > 1)
+    {
+        result.cloudRgbaHalf = average(cloudSum, frames);
+        result.linearRgbaHalf = average(linearSum, frames);
+        result.displayRgba8.resize(displaySum.size());
+        for (size_t i = 0; i < displaySum.size(); ++i)
+            result.displayRgba8[i] = uint8_t(std::lround(displaySum[i] / frames));
+        result.cloudDepthM.resize(depthSum.size());
+        for (size_t i = 0; i < depthSum.size(); ++i)
+            result.cloudDepthM[i] = depthWeight[i] > 1e-6 ? float(depthSum[i] / depthWeight[i]) : 0.0f;
+    }
 
     result.sunAzimuthDeg = sunMoon.sun.azimuthDeg;
     result.sunElevationDeg = sunMoon.sun.elevationDeg;

@@ -20,20 +20,18 @@ size_t texelIndex(const WeatherWindow& w, int slice, uint32_t i, uint32_t j)
 // tens of kilometres, more with stronger instability, and drifts with the upper wind.
 constexpr double kAnvilBaseRadiusM = 8000.0;
 constexpr double kAnvilRadiusPerCapeM = 12000.0 / 3000.0;
-constexpr double kAnvilDriftS = 600.0;
-constexpr float kAnvilBaseFraction = 0.8f;
+constexpr double kAnvilDriftS = 300.0;
+constexpr float kAnvilBaseFraction = 0.72f;
 
 }  // namespace
 
 void computeAnvils(WeatherWindow& window)
 {
     const uint32_t n = window.sizeTexels;
-    const double texel = window.texelSizeM;
     for (uint32_t j = 0; j < n; ++j)
         for (uint32_t i = 0; i < n; ++i)
             window.texels[texelIndex(window, WEATHER_WINDOW_ANVIL_SLICE, i, j)] = glm::vec4(0.0f);
     for (int k = 0; k < MAX_CLOUD_LAYERS; ++k)
-    {
         for (uint32_t j = 0; j < n; ++j)
             for (uint32_t i = 0; i < n; ++i)
             {
@@ -44,21 +42,23 @@ void computeAnvils(WeatherWindow& window)
                 const glm::vec4 upper = window.texels[texelIndex(window, WEATHER_WINDOW_HIGH_SLICE + 1, i, j)];
                 double cape = std::isfinite(aux.w) ? double(std::max(0.0f, aux.w)) : 0.0;
                 double radius = kAnvilBaseRadiusM + kAnvilRadiusPerCapeM * std::min(cape, 5000.0);
-                double cx = (double(i) + 0.5) * texel + double(upper.x) * kAnvilDriftS;
-                double cy = (double(j) + 0.5) * texel + double(upper.y) * kAnvilDriftS;
-                int reach = int(std::ceil(radius / texel)) + 1;
+                glm::dvec2 centre = window.texelPositionM(i, j) + glm::dvec2(upper.x, upper.y) * kAnvilDriftS;
+                // Search a box of the (warped) window plane that holds the anvil: the warp magnifies
+                // distances around a point at |p| by at most (E + r0) / (|p| + r0).
+                glm::dvec2 q = windowWarpM(centre, window.halfExtentM, window.warpRadiusM);
+                double magnify = window.warpRadiusM > 0
+                                     ? (window.halfExtentM + window.warpRadiusM) /
+                                           (std::max(0.0, glm::length(centre) - radius) + window.warpRadiusM)
+                                     : 1.0;
+                int reach = int(std::ceil(radius * magnify / window.texelSizeM)) + 1;
+                int ci = int(std::floor(q.x / window.texelSizeM + 0.5 * n));
+                int cj = int(std::floor(q.y / window.texelSizeM + 0.5 * n));
                 float top = cell.z;
                 float base = cell.y + (cell.z - cell.y) * kAnvilBaseFraction;
-                for (int dj = -reach; dj <= reach; ++dj)
-                    for (int di = -reach; di <= reach; ++di)
+                for (int tj = std::max(0, cj - reach); tj <= std::min(int(n) - 1, cj + reach); ++tj)
+                    for (int ti = std::max(0, ci - reach); ti <= std::min(int(n) - 1, ci + reach); ++ti)
                     {
-                        double x = (std::floor(cx / texel) + di + 0.5) * texel;
-                        double y = (std::floor(cy / texel) + dj + 0.5) * texel;
-                        int ti = int(std::floor(x / texel));
-                        int tj = int(std::floor(y / texel));
-                        if (ti < 0 || tj < 0 || ti >= int(n) || tj >= int(n))
-                            continue;
-                        double r = std::hypot(x - cx, y - cy) / radius;
+                        double r = glm::length(window.texelPositionM(uint32_t(ti), uint32_t(tj)) - centre) / radius;
                         if (r >= 1.0)
                             continue;
                         float cov = cell.x * float(1.0 - r * r * (3.0 - 2.0 * r));  // smooth falloff
@@ -67,7 +67,6 @@ void computeAnvils(WeatherWindow& window)
                             a = glm::vec4(cov, a.x > 0.0f ? std::min(a.y, base) : base, std::max(a.z, top), 0.0f);
                     }
             }
-    }
 }
 
 WindowSummary summarizeWindow(const WeatherWindow& window)

@@ -30,7 +30,7 @@ struct WindowSummary
 
 /// Fills the anvil slice of `window` (WEATHER_WINDOW_ANVIL_SLICE) from its cumulonimbus cells: each
 /// tower top spreads into a slab whose radius grows with CAPE (8 km + 12 km per 3000 J/kg) and whose
-/// centre is pushed downwind by the upper-level wind over 10 minutes, at 80-100% of the tower height.
+/// centre is pushed downwind by the upper-level wind over 5 minutes, at 72-100% of the tower height.
 void computeAnvils(WeatherWindow& window);
 
 /// Summarises `window` (after computeAnvils).

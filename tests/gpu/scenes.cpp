@@ -64,6 +64,32 @@ WeatherSnapshot uniformLayer(float coverage, CloudType type, float baseM, float 
     return w;
 }
 
+WeatherSnapshot isolatedCell(double latDeg, double lonDeg, double radiusM, CloudType type, float baseM, float topM)
+{
+    WeatherSnapshot w;
+    w.grid = {latDeg - 0.5, lonDeg - 0.5, 0.01, 0.01, 101, 101};
+    size_t n = w.grid.cellCount();
+    CloudLayerFields l;
+    l.name = "cell";
+    l.coverage.assign(n, 0.0f);
+    l.baseAltitudeM.assign(n, baseM);
+    l.topAltitudeM.assign(n, topM);
+    l.type.assign(n, uint8_t(type));
+    l.precipitationMmH.assign(n, 0.0f);
+    l.windEastMS.assign(n, 0.0f);
+    l.windNorthMS.assign(n, 0.0f);
+    for (uint32_t i = 0; i < w.grid.nLat; ++i)
+        for (uint32_t j = 0; j < w.grid.nLon; ++j)
+        {
+            double dy = (w.grid.lat0Deg + i * w.grid.dLatDeg - latDeg) * 111320.0;
+            double dx = (w.grid.lon0Deg + j * w.grid.dLonDeg - lonDeg) * 111320.0 * std::cos(latDeg * M_PI / 180.0);
+            double r = std::hypot(dx, dy) / radiusM;
+            l.coverage[w.grid.index(i, j)] = r < 1.0 ? float(1.0 - r * r * r) : 0.0f;
+        }
+    w.layers.push_back(l);
+    return w;
+}
+
 ViewRequest lookUp(double latDeg, double lonDeg, double altM, double pitchDeg, const std::string& timeIso)
 {
     ViewRequest v;
@@ -91,7 +117,7 @@ ViewRequest cumulonimbusView(const std::string& timeIso)
     ViewRequest v;
     double lat = kBuiltinCumulonimbusLatDeg;
     double lon = kBuiltinCumulonimbusLonDeg - 40000.0 / (111320.0 * std::cos(lat * M_PI / 180.0));
-    v.pose = {lat, lon, 1500.0, 90.0, 12.0, 0.0};
+    v.pose = {lat, lon, 4500.0, 90.0, 6.0, 0.0};  // above the cumulus field, as in the showcase
     v.fovYDeg = 60.0;
     v.width = 320;
     v.height = 180;
@@ -99,11 +125,11 @@ ViewRequest cumulonimbusView(const std::string& timeIso)
     return v;
 }
 
-ImageStats cloudStats(const RenderResult& r)
+ImageStats cloudStats(const RenderResult& r, uint32_t rowEnd)
 {
     ImageStats s;
-    size_t pixels = size_t(r.width) * r.height;
-    double lum = 0, red = 0, blue = 0, display = 0;
+    size_t pixels = size_t(r.width) * std::min(r.height, rowEnd);
+    double lum = 0, red = 0, blue = 0, display = 0, opaque = 0;
     for (size_t i = 0; i < pixels; ++i)
     {
         float c[4];
@@ -125,6 +151,11 @@ ImageStats cloudStats(const RenderResult& r)
             red += double(c[0] / c[3]);
             blue += double(c[2] / c[3]);
         }
+        if (c[3] > 0.95f)
+        {
+            ++s.opaquePixels;
+            opaque += double(0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]) / double(c[3]);
+        }
     }
     if (s.cloudPixels)
     {
@@ -133,6 +164,8 @@ ImageStats cloudStats(const RenderResult& r)
         s.meanCloudBlue = blue / s.cloudPixels;
     }
     s.meanDisplayLuminance = display / double(pixels);
+    if (s.opaquePixels)
+        s.meanOpaqueLuminance = opaque / s.opaquePixels;
     return s;
 }
 

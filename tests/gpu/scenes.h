@@ -21,9 +21,12 @@ WeatherSnapshot clearSky();
 /// One layer of uniform coverage, type and altitudes over a global 1-degree grid.
 WeatherSnapshot uniformLayer(float coverage, CloudType type, float baseM, float topM);
 
+/// One round cell of full coverage (radius in metres) on a 0.01-degree regional grid, clear elsewhere.
+WeatherSnapshot isolatedCell(double latDeg, double lonDeg, double radiusM, CloudType type, float baseM, float topM);
+
 ViewRequest lookUp(double latDeg, double lonDeg, double altM, double pitchDeg, const std::string& timeIso);
 ViewRequest lookDown(double latDeg, double lonDeg, double altM, int64_t unixTimeS);
-/// 40 km west of the built-in cumulonimbus, looking east.
+/// 40 km west of the built-in cumulonimbus at 4500 m (above the cumulus field), looking east.
 ViewRequest cumulonimbusView(const std::string& timeIso);
 
 struct ImageStats
@@ -35,8 +38,11 @@ struct ImageStats
     double meanCloudLuminance = 0;  ///< mean of cloud radiance / alpha over cloud pixels
     double meanCloudRed = 0, meanCloudBlue = 0;
     double meanDisplayLuminance = 0;  ///< mean of the tone-mapped image (0..1)
+    uint32_t opaquePixels = 0;        ///< pixels with alpha > 0.95 (thick cloud, no silver lining)
+    double meanOpaqueLuminance = 0;   ///< mean cloud radiance over opaque pixels
 };
-ImageStats cloudStats(const RenderResult& r);
+/// Statistics over rows [0, rowEnd) (all rows by default).
+ImageStats cloudStats(const RenderResult& r, uint32_t rowEnd = 0xffffffffu);
 
 struct SkyProbe
 {

@@ -103,18 +103,29 @@ TEST_F(GpuRender, SameInputsGiveSameBytes)
     EXPECT_EQ(a.cloudDepthM, b.cloudDepthM);
 }
 
-// Looking east at the built-in cumulonimbus: in the afternoon the sun is behind the eye and lights the
-// side we see; in the morning, at the same solar elevation, we see its shadow side.
-TEST_F(GpuRender, SunSideOfACloudIsBrighterThanItsShadowSide)
+// One cumulus cell 12 km east of the eye, seen at the same low sun elevation from its sunlit side
+// (afternoon, sun behind the eye) and from its shadow side (morning, sun behind the cloud).
+TEST_F(GpuRender, SunSideOfACumulusIsBrighterThanItsShadowSide)
 {
-    WeatherSnapshot w = makeBuiltinWeather(0);
-    RenderResult lit = render(w, cumulonimbusView("2026-06-21T14:28:00Z"));
-    RenderResult shadow = render(w, cumulonimbusView("2026-06-21T08:28:00Z"));
+    const double lat = 45.0, lon = 7.0;
+    WeatherSnapshot cell = isolatedCell(lat, lon + 0.15, 4000.0, CloudType::Cumulus, 1000.0f, 3000.0f);
+    ViewRequest v = lookUp(lat, lon, 1800.0, 3.0, "2026-06-21T17:00:00Z");
+    v.pose.headingDeg = 90.0;
+    v.fovYDeg = 40.0;
+    v.unixTimeS = timeOfSunElevation(lat, lon, "2026-06-21T14:00:00Z", 25.0);
+    RenderResult lit = render(cell, v);
+    int64_t morning = parseTime("2026-06-21T04:00:00Z");  // the sun rises through 25 degrees
+    while (computeSunMoon(morning, lat, lon, 0.0).sun.elevationDeg < 25.0)
+        morning += 60;
+    v.unixTimeS = morning;
+    RenderResult shadow = render(cell, v);
     ImageStats a = cloudStats(lit), b = cloudStats(shadow);
-    ASSERT_GT(a.cloudPixels, 200u);
-    ASSERT_GT(b.cloudPixels, 200u);
+    ASSERT_GT(a.opaquePixels, 300u);
+    ASSERT_GT(b.opaquePixels, 300u);
     EXPECT_NEAR(lit.sunElevationDeg, shadow.sunElevationDeg, 1.0);
-    EXPECT_GT(a.meanCloudLuminance, 1.3 * b.meanCloudLuminance);
+    // Opaque pixels only: thin backlit edges are rightly bright (forward scattering, silver lining).
+    EXPECT_GT(a.meanOpaqueLuminance, 1.3 * b.meanOpaqueLuminance)
+        << "lit " << a.meanOpaqueLuminance << " shadow " << b.meanOpaqueLuminance;
 }
 
 TEST_F(GpuRender, SunsetLightIsRedderThanNoonLight)

@@ -67,7 +67,9 @@ TEST(CloudMath, ShellIntersectionMatchesDoubleReference)
                 // Relative float accuracy of the distance itself, plus 5 cm.
                 EXPECT_NEAR(tf, rf, 0.05 + 2e-6 * std::fabs(rf)) << "hc " << hc << " hs " << hs << " mu " << mu;
                 if (std::fabs(rn) < 1e6)
+                {
                     EXPECT_NEAR(tn, rn, 0.05 + 2e-6 * std::fabs(rn)) << "hc " << hc << " hs " << hs << " mu " << mu;
+                }
                 ++checked;
             }
     EXPECT_GT(checked, 500);
@@ -114,8 +116,8 @@ TEST(CloudMath, HeightProfilesStayInUnitRangeAndVanishAtEnds)
         }
         EXPECT_GT(peak, 0.9f) << type;
     }
-    // Cumulus is bottom-heavy, stratus flat: at 60% height stratus is denser than cumulus.
-    EXPECT_GT(glsl::cloudHeightProfile(CLOUD_TYPE_STRATUS, 0.6f), glsl::cloudHeightProfile(CLOUD_TYPE_CUMULUS, 0.6f));
+    // Cumulus rounds off lower than stratus: at 80% height stratus is denser than cumulus.
+    EXPECT_GT(glsl::cloudHeightProfile(CLOUD_TYPE_STRATUS, 0.8f), glsl::cloudHeightProfile(CLOUD_TYPE_CUMULUS, 0.8f));
 }
 
 TEST(CloudMath, BeerPowderMatchesFormula)

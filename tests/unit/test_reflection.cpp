@@ -43,7 +43,7 @@ TEST(Reflection, PushConstantSizesMatchSharedStructs)
     EXPECT_EQ(iface.pushConstantSize, sizeof(SkyViewPushConstants));
     ASSERT_TRUE(sky::reflectSpirv(loadSpirv("base_noise"), iface, error)) << error;
     EXPECT_EQ(iface.pushConstantSize, sizeof(NoisePush));
-    EXPECT_EQ(iface.localSize[2], uint32_t(WORKGROUP_SIZE_3D));
+    EXPECT_EQ(iface.localSize[0], uint32_t(NOISE_WORKGROUP_SIZE));  // 8x1x1: fast on lavapipe (noise_params.h)
 }
 
 TEST(Reflection, RejectsGarbage)
