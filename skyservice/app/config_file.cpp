@@ -1,0 +1,150 @@
+// SPDX-License-Identifier: MIT
+#include "skyservice/app/config_file.h"
+
+#include "skyservice/render/frame_setup.h"
+
+#include <functional>
+#include <map>
+#include <toml++/toml.h>
+
+namespace sky
+{
+namespace
+{
+
+struct Key
+{
+    double lo, hi;
+    std::function<void(QualitySettings&, double)> set;
+    bool integer = false;
+    bool boolean = false;
+};
+
+std::map<std::string, Key> keys()
+{
+    auto u32 = [](uint32_t QualitySettings::*field, double lo, double hi) {
+        return Key{lo, hi, [field](QualitySettings& q, double v) { q.*field = uint32_t(v); }, true};
+    };
+    auto real = [](double QualitySettings::*field, double lo, double hi) {
+        return Key{lo, hi, [field](QualitySettings& q, double v) { q.*field = v; }};
+    };
+    auto flag = [](bool QualitySettings::*field) {
+        return Key{0, 1, [field](QualitySettings& q, double v) { q.*field = v != 0.0; }, false, true};
+    };
+    return {
+        {"march.max_view_steps", u32(&QualitySettings::maxViewSteps, 8, 4096)},
+        {"march.light_samples", u32(&QualitySettings::lightSamples, 1, 6)},
+        {"march.accumulation_frames", u32(&QualitySettings::accumulationFrames, 1, 64)},
+        {"march.max_distance_m", real(&QualitySettings::maxDistanceM, 1000, 2000000)},
+        {"lighting.octaves", u32(&QualitySettings::octaves, 1, 8)},
+        {"lighting.octave_attenuation", real(&QualitySettings::octaveAttenuation, 0, 1)},
+        {"lighting.octave_contribution", real(&QualitySettings::octaveContribution, 0, 1)},
+        {"lighting.octave_eccentricity", real(&QualitySettings::octaveEccentricity, 0, 1)},
+        {"lighting.powder_strength", real(&QualitySettings::powderStrength, 0, 1)},
+        {"lighting.phase_forward_g", real(&QualitySettings::phaseForwardG, 0, 0.99)},
+        {"lighting.phase_back_g", real(&QualitySettings::phaseBackG, -0.99, 0)},
+        {"lighting.phase_forward_weight", real(&QualitySettings::phaseForwardWeight, 0, 1)},
+        {"lighting.cone_step_m", real(&QualitySettings::coneStepM, 1, 2000)},
+        {"lighting.ambient_strength", real(&QualitySettings::ambientStrength, 0, 10)},
+        {"shape.extinction_per_m", real(&QualitySettings::extinctionPerM, 1e-4, 1)},
+        {"shape.detail_erosion", real(&QualitySettings::detailErosion, 0, 1)},
+        {"shape.detail", flag(&QualitySettings::detail)},
+        {"shape.high_cloud", flag(&QualitySettings::highCloud)},
+        {"noise.seed", u32(&QualitySettings::noiseSeed, 0, 4294967295.0)},
+        {"noise.base_period_m", real(&QualitySettings::baseNoisePeriodM, 100, 100000)},
+        {"noise.detail_period_m", real(&QualitySettings::detailNoisePeriodM, 10, 100000)},
+        {"noise.curl_period_m", real(&QualitySettings::curlNoisePeriodM, 10, 100000)},
+        {"noise.high_period_m", real(&QualitySettings::highNoisePeriodM, 100, 1000000)},
+        {"window.half_extent_m", real(&QualitySettings::windowHalfExtentM, 10000, 3000000)},
+        {"window.warp_radius_m", real(&QualitySettings::windowWarpRadiusM, 0, 3000000)},
+    };
+}
+
+}  // namespace
+
+bool applyConfigFile(const std::string& path, QualitySettings& quality, std::string& error)
+{
+    toml::table table;
+    try
+    {
+        table = toml::parse_file(path);
+    }
+    catch (const toml::parse_error& e)
+    {
+        const auto& where = e.source().begin;
+        error = path + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) + ": " +
+                std::string(e.description());
+        return false;
+    }
+    QualitySettings q = quality;
+    const std::map<std::string, Key> known = keys();
+    std::string bad;
+    table.for_each([&](const toml::key& section, auto&& node) {
+        if (!bad.empty())
+            return;
+        if constexpr (!toml::is_table<decltype(node)>)
+        {
+            bad = path + ": '" + std::string(section.str()) + "' must be a section such as [march]";
+        }
+        else
+        {
+            node.for_each([&](const toml::key& name, auto&& value) {
+                if (!bad.empty())
+                    return;
+                std::string full = std::string(section.str()) + "." + std::string(name.str());
+                auto it = known.find(full);
+                if (it == known.end())
+                {
+                    bad = path + ": unknown key '" + full + "' (config/default.toml lists every key)";
+                    return;
+                }
+                const Key& k = it->second;
+                double v = 0;
+                if constexpr (toml::is_boolean<decltype(value)>)
+                {
+                    if (!k.boolean)
+                    {
+                        bad = path + ": '" + full + "' must be a number";
+                        return;
+                    }
+                    v = value.get() ? 1.0 : 0.0;
+                }
+                else if constexpr (toml::is_number<decltype(value)>)
+                {
+                    v = double(value.get());
+                    if (k.boolean || (k.integer && v != double(int64_t(v))))
+                    {
+                        bad = path + ": '" + full + "' must be " + (k.boolean ? "true or false" : "an integer");
+                        return;
+                    }
+                }
+                else
+                {
+                    bad = path + ": '" + full + "' must be " + (k.boolean ? "true or false" : "a number");
+                    return;
+                }
+                if (!(v >= k.lo && v <= k.hi))
+                {
+                    bad = path + ": '" + full + "' = " + std::to_string(v) + " is outside [" + std::to_string(k.lo) +
+                          ", " + std::to_string(k.hi) + "]";
+                    return;
+                }
+                k.set(q, v);
+            });
+        }
+    });
+    if (!bad.empty())
+    {
+        error = bad;
+        return false;
+    }
+    if (!validateNoisePeriods(q, error))
+    {
+        error = path + ": " + error;
+        return false;
+    }
+    quality = q;
+    return true;
+}
+
+}  // namespace sky
