@@ -36,6 +36,7 @@ int main(int argc, char** argv)
     renderCmd->add_option("--out", render.out, "Output prefix: writes PREFIX.png, PREFIX.exr, PREFIX.json");
     renderCmd->add_flag("--no-detail", render.noDetail, "Skip detail erosion");
     renderCmd->add_flag("--no-high-cloud", render.noHighCloud, "Skip the cirrus layer");
+    addShadowMapOptions(*renderCmd, v);
 
     ShowcaseOptions showcase;
     CLI::App* showcaseCmd = app.add_subcommand("showcase", "Render the showcase views and a contact sheet");

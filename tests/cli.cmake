@@ -31,3 +31,31 @@ set_tests_properties(cli.render.small_validated PROPERTIES TIMEOUT 300)
 add_test(NAME cli.render.small_files_exist COMMAND ${CMAKE_COMMAND} -E cat ${SKY_CLI_TMP}/small.json)
 set_tests_properties(cli.render.small_files_exist PROPERTIES DEPENDS cli.render.small_validated
                      PASS_REGULAR_EXPRESSION "\"sun\"")
+# A config file with an unknown key is refused and the key is named (exit 2).
+file(WRITE ${SKY_CLI_TMP}/bad-key.toml "[march]\nmax_view_step = 10\n")
+add_test(NAME cli.config.unknown_key COMMAND ${SKY_EXPECT} 2 "march.max_view_step" ${SKY_BIN} render
+         --config ${SKY_CLI_TMP}/bad-key.toml)
+# A value out of range is refused with the range.
+file(WRITE ${SKY_CLI_TMP}/bad-range.toml "[lighting]\nphase_forward_g = 1.5\n")
+add_test(NAME cli.config.out_of_range COMMAND ${SKY_EXPECT} 2 "phase_forward_g.*outside" ${SKY_BIN} render
+         --config ${SKY_CLI_TMP}/bad-range.toml)
+# A file that is not TOML is refused with line and column.
+file(WRITE ${SKY_CLI_TMP}/not-toml.toml "[march\nthis is = = not toml\n")
+add_test(NAME cli.config.syntax COMMAND ${SKY_EXPECT} 2 "not-toml.toml:[0-9]+:[0-9]+" ${SKY_BIN} render
+         --config ${SKY_CLI_TMP}/not-toml.toml)
+# Noise periods that do not divide the common modulus would make clouds jump: refused.
+file(WRITE ${SKY_CLI_TMP}/bad-period.toml "[noise]\nbase_period_m = 7000.0\n")
+add_test(NAME cli.config.noise_period COMMAND ${SKY_EXPECT} 2 "does not divide" ${SKY_BIN} render
+         --config ${SKY_CLI_TMP}/bad-period.toml)
+# The documented default file is valid and renders.
+add_test(NAME cli.config.default_file COMMAND ${SKY_EXPECT} 0 "wrote" ${SKY_BIN} render --config
+         ${PROJECT_SOURCE_DIR}/config/default.toml --quality test --accumulate 1 --steps 32 --width 32 --height 18
+         --out ${SKY_CLI_TMP}/config-default)
+set_tests_properties(cli.config.default_file PROPERTIES TIMEOUT 300)
+# No Vulkan driver: a clear message and exit 1, never a crash.
+add_test(NAME cli.render.no_vulkan_driver COMMAND ${CMAKE_COMMAND} -E env VK_DRIVER_FILES=/nonexistent/icd.json
+         VK_ICD_FILENAMES=/nonexistent/icd.json ${SKY_EXPECT} 1 "Vulkan" ${SKY_BIN} render --quality test
+         --width 16 --height 16 --out ${SKY_CLI_TMP}/never)
+# A device index that does not exist is named.
+add_test(NAME cli.render.no_such_device COMMAND ${SKY_EXPECT} 1 "--device 42" ${SKY_BIN} render --device 42
+         --quality test --width 16 --height 16 --out ${SKY_CLI_TMP}/never)

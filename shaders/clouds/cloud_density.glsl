@@ -2,6 +2,8 @@
 // Cloud density at a point: weather window lookup, base shape, coverage, anvils, detail erosion.
 // Included by cloud passes after the FrameBlock and the texture bindings.
 
+// Vertical stretch of the base noise: 1 = isotropic, 0.35 = features ~3 times taller than wide.
+const float BASE_NOISE_VERTICAL_SCALE = 0.35f;
 // Detail erosion fades out with distance: beyond this the detail noise is finer than a pixel.
 const float kDetailFadeStartM = 8000.0f;
 const float kDetailFadeEndM = 25000.0f;
@@ -93,6 +95,7 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
     if (!w.inside || h < frame.shell.x || h > frame.shell.y)
         return s;
     vec3 noiseRel = toNoiseFrame(p);
+    vec3 radial = normalize(p + vec3(0.0f, 0.0f, frame.earth.y));  // local vertical at p
     float best = 0.0f;
     for (int k = 0; k <= MAX_CLOUD_LAYERS; ++k)
     {
@@ -111,7 +114,12 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
                                   : int(texelFetch(weatherWindow, ivec3(w.texel, 2 * k), 0).w + 0.5f);
         vec3 shear = vec3(frame.layerShearM[k].xy * hf, 0.0f);
         vec3 noisePos = toNoiseFrame(-shear) + noiseRel + frame.layerNoiseOffsetM[k].xyz;
-        float shape = baseShapeAt(noisePos);
+        // The base shape varies slowly with height: its lookup point slides down the local vertical
+        // toward the layer base by (1 - s) of the height, so that clouds are vertically coherent columns
+        // (coverage c shades about c of the ground) while the detail noise keeps full 3D variation.
+        // Written as a shift of p, so nothing cancels in float and the point stays world-fixed.
+        vec3 baseNoisePos = noisePos - toNoiseFrame(radial) * ((h - base) * (1.0f - BASE_NOISE_VERTICAL_SCALE));
+        float shape = baseShapeAt(baseNoisePos);
         float densityScale = genusDensityScale(cloudType);
         if (anvilSlab)
         {

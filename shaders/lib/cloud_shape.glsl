@@ -71,17 +71,18 @@ float equalizeBaseShape(float shape)
     return 1.0f / (1.0f + exp(-1.702f * (shape - BASE_SHAPE_MEAN) / BASE_SHAPE_SD));
 }
 
-// Coverage (after Schneider 2015, remap(base, 1 - coverage, 1, 0, 1)): the shape must exceed 1 - coverage
-// to be cloud, so with a uniform shape the cloud fraction equals the coverage. Density then rises over
-// the next 0.25 of shape instead of the whole remaining range, so that full coverage is a solid deck and
-// not a sponge, while edges stay soft.
+// Coverage (after Schneider 2015, remap(base, 1 - coverage, 1, 0, 1)): with a uniform shape, the cloud
+// fraction follows the coverage. Density rises over 0.25 of shape instead of the whole remaining range,
+// so that full coverage is a solid deck and not a sponge, while edges stay soft.
 SKY_CONST float COVERAGE_SOFTNESS = 0.25f;
 
 float applyCoverage(float baseShape, float coverage)
 {
     if (coverage <= 0.0f)
         return 0.0f;
-    float threshold = 1.0f - coverage;
+    // Threshold 1 - c (fraction ~c); above 85 % coverage it slides down to -s so that full coverage has
+    // no holes, while a 0.9 deck keeps lumpy tops and a few gaps.
+    float threshold = 1.0f - coverage - COVERAGE_SOFTNESS * smoothstep(0.85f, 1.0f, coverage);
     return saturate1(remapValue(baseShape, threshold, threshold + COVERAGE_SOFTNESS, 0.0f, 1.0f));
 }
 

@@ -33,6 +33,7 @@ struct CommonRenderOptions
     uint32_t seed = 1;
     int steps = 0;                  ///< overrides the preset's view steps when > 0
     int accumulate = 0;             ///< overrides the preset's accumulated frames when > 0
+    std::string config;             ///< TOML file applied after the preset (config/default.toml)
 };
 
 struct RenderCommandOptions
@@ -55,6 +56,8 @@ struct ShowcaseOptions
 };
 
 void addCommonOptions(CLI::App& app, CommonRenderOptions& o);
+/// --shadow-map, --shadow-size, --shadow-extent (fill the request's shadow-map fields).
+void addShadowMapOptions(CLI::App& app, ViewRequest& request);
 /// Fills `q` from the preset name; returns false (and a message) for an unknown preset.
 bool qualityFromOptions(const CommonRenderOptions& o, QualitySettings& q, std::string& error);
 

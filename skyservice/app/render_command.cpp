@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/app/commands.h"
 
+#include "skyservice/app/config_file.h"
 #include "skyservice/app/render_files.h"
 #include "skyservice/app/weather_source.h"
 #include "skyservice/render/renderer.h"
@@ -19,8 +20,20 @@ void addCommonOptions(CLI::App& app, CommonRenderOptions& o)
     app.add_option("--quality", o.quality, "Preset: high | medium | test")->check(CLI::IsMember({"high", "medium", "test"}));
     app.add_option("--seed", o.seed, "Noise seed (same seed, same clouds)");
     app.add_option("--steps", o.steps, "Maximum view samples per ray (overrides the preset)")->check(CLI::Range(8, 4096));
+    app.add_option("--config", o.config, "TOML file overriding the model settings (see config/default.toml)");
     app.add_option("--accumulate", o.accumulate, "Frames averaged per picture, each with new jitter (overrides the preset)")
         ->check(CLI::Range(1, 64));
+}
+
+void addShadowMapOptions(CLI::App& app, ViewRequest& request)
+{
+    app.add_flag("--shadow-map", request.shadowMap,
+                 "Also write the cloud shadow map: PREFIX-shadow.exr, PREFIX-shadow.png, \"shadowMap\" in PREFIX.json");
+    app.add_option("--shadow-size", request.shadowMapSize, "Shadow map texels per side (default 1024)")
+        ->check(CLI::Range(8, 8192));
+    app.add_option("--shadow-extent", request.shadowMapExtentM,
+                   "Shadow map edge length on the ground (metres, default 150000)")
+        ->check(CLI::Range(100.0, 1600000.0));
 }
 
 bool qualityFromOptions(const CommonRenderOptions& o, QualitySettings& q, std::string& error)
@@ -45,6 +58,8 @@ bool qualityFromOptions(const CommonRenderOptions& o, QualitySettings& q, std::s
     }
     if (o.quality == "high")
         q.accumulationFrames = 4;
+    if (!o.config.empty() && !applyConfigFile(o.config, q, error))
+        return false;
     if (o.steps > 0)
         q.maxViewSteps = uint32_t(o.steps);
     if (o.accumulate > 0)
@@ -73,8 +88,10 @@ int runRenderCommand(const RenderCommandOptions& options)
         std::fprintf(stderr, "skyservice render: %s\n", error.c_str());
         return kExitUsage;
     }
-    quality.detail = !options.noDetail;
-    quality.highCloud = !options.noHighCloud;
+    if (options.noDetail)
+        quality.detail = false;
+    if (options.noHighCloud)
+        quality.highCloud = false;
 
     WeatherSnapshot weather;
     if (!loadWeatherSource(options.weather, request.unixTimeS, weather, error))
@@ -118,8 +135,13 @@ int runRenderCommand(const RenderCommandOptions& options)
             code = kExitRuntime;
         }
         else
+        {
             std::printf("wrote %s.png %s.exr %s.json (GPU %.1f ms)\n", options.out.c_str(), options.out.c_str(),
                         options.out.c_str(), result.gpuMs.count("total") ? result.gpuMs.at("total") : 0.0);
+            if (result.shadowMapSize > 0)
+                std::printf("wrote %s-shadow.exr %s-shadow.png (GPU %.1f ms)\n", options.out.c_str(),
+                            options.out.c_str(), result.gpuMs.count("shadowMap") ? result.gpuMs.at("shadowMap") : 0.0);
+        }
     }
     if (options.common.validate && renderer.ctx.validationMessages.load() > 0)
     {

@@ -5,6 +5,9 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 namespace sky
 {
 namespace
@@ -38,6 +41,29 @@ nlohmann::json qualityToJson(const QualitySettings& q)
             {"noiseSeed", q.noiseSeed},
             {"detail", q.detail},
             {"highCloud", q.highCloud}};
+}
+
+bool writeShadowMapFiles(const std::string& prefix, const RenderResult& result, std::string& error)
+{
+    const uint32_t n = result.shadowMapSize;
+    if (n == 0)
+        return true;
+    std::vector<ExrChannel> channels = {
+        {"Y", ExrPixelType::Float, result.shadowTransmittance.data(), 1},
+        {"opticalDepth", ExrPixelType::Float, result.shadowOpticalDepth.data(), 1},
+    };
+    if (!writeExr(prefix + "-shadow.exr", n, n, channels, error, {{"skyShadowMap", result.shadowMap.dump()}}))
+        return false;
+    ImageRgba8 png;
+    png.width = png.height = n;
+    png.pixels.resize(size_t(n) * n * 4);
+    for (size_t i = 0; i < size_t(n) * n; ++i)
+    {
+        auto grey = uint8_t(std::lround(255.0f * std::clamp(result.shadowTransmittance[i], 0.0f, 1.0f)));
+        png.pixels[i * 4 + 0] = png.pixels[i * 4 + 1] = png.pixels[i * 4 + 2] = grey;
+        png.pixels[i * 4 + 3] = 255;
+    }
+    return writePng(prefix + "-shadow.png", png, error);
 }
 
 bool writeRenderFiles(const std::string& prefix, const ViewRequest& request, const RenderResult& result,
@@ -88,6 +114,16 @@ bool writeRenderFiles(const std::string& prefix, const ViewRequest& request, con
     j["quality"] = facts.quality;
     if (!facts.caption.empty())
         j["caption"] = facts.caption;
+    if (result.shadowMapSize > 0)
+    {
+        if (!writeShadowMapFiles(prefix, result, error))
+            return false;
+        j["shadowMap"] = result.shadowMap;
+        j["shadowMap"]["files"] = {
+            {"exr", "-shadow.exr: Y = transmittance (float), opticalDepth (float); header attribute skyShadowMap = "
+                    "this metadata"},
+            {"png", "-shadow.png: grey, 8-bit linear transmittance (255 = clear), not sRGB"}};
+    }
     j["files"] = {{"png", "tone-mapped sRGB, sky and clouds"},
                   {"exr", "R,G,B: premultiplied linear cloud radiance; A: 1 - cloud transmittance; Z: "
                           "transmittance-weighted cloud distance (m, 0 where A = 0); sky.R/G/B: final linear frame"}};

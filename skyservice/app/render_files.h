@@ -21,8 +21,15 @@ struct RenderFacts
     nlohmann::json quality;      ///< the quality settings used
 };
 
+/// Also writes the shadow map files (writeShadowMapFiles) and its metadata under "shadowMap" when the
+/// result has one.
 bool writeRenderFiles(const std::string& prefix, const ViewRequest& request, const RenderResult& result,
                       const RenderFacts& facts, std::string& error);
+
+/// Writes PREFIX-shadow.exr (float channels Y = transmittance and opticalDepth; the metadata JSON in the
+/// string attribute "skyShadowMap") and PREFIX-shadow.png (grey, 8-bit linear transmittance: 255 = clear,
+/// not sRGB-encoded). Writes nothing and succeeds when result.shadowMapSize is 0.
+bool writeShadowMapFiles(const std::string& prefix, const RenderResult& result, std::string& error);
 
 nlohmann::json qualityToJson(const QualitySettings& q);
 

@@ -106,8 +106,9 @@ FrameParams makeFrameParams(const FrameInputs& in)
         f.layerNoiseOffsetM[k] = vec4(float(positiveFmod(o.x, modulus)), float(positiveFmod(o.y, modulus)),
                                       float(positiveFmod(o.z, modulus)), 0.0f);
         // Wind shear: the top of a layer leans downwind of its base by the wind difference to the upper
-        // level over ~3 minutes of growth (our choice; tall clouds lean more).
-        glm::dvec2 shear = k < MAX_CLOUD_LAYERS ? (sum.upperWindEnuMS - wind) * 180.0 : glm::dvec2(0.0);
+        // level over 30 s (our choice: a 20 m/s difference leans a tower top 600 m; more than that makes
+        // a field of small clouds read as streaks).
+        glm::dvec2 shear = k < MAX_CLOUD_LAYERS ? (sum.upperWindEnuMS - wind) * 30.0 : glm::dvec2(0.0);
         f.layerShearM[k] = vec4(float(shear.x), float(shear.y), 0.0f, 0.0f);
     }
     f.noiseScale = vec4(float(q.baseNoisePeriodM), float(q.detailNoisePeriodM), float(q.curlNoisePeriodM),

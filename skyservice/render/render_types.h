@@ -4,6 +4,8 @@
 
 #include "skyservice/earth/geodesy.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <map>
 #include <string>
@@ -29,7 +31,7 @@ struct QualitySettings
     double phaseBackG = -0.3;        ///< back lobe
     double phaseForwardWeight = 0.7; ///< share of the forward lobe
     double coneStepM = 70.0;         ///< first light step (m); step i is (i+1) times this
-    double baseNoisePeriodM = 6000.0;    ///< metres covered by one tile of the 128^3 base noise
+    double baseNoisePeriodM = 8000.0;    ///< metres covered by one tile of the 128^3 base noise
     double detailNoisePeriodM = 1500.0;  ///< one tile of the 32^3 detail noise
     double curlNoisePeriodM = 6000.0;    ///< one tile of the curl noise
     double highNoisePeriodM = 24000.0;   ///< one tile of the high-cloud texture
@@ -40,6 +42,8 @@ struct QualitySettings
     bool detail = true;                  ///< detail erosion on
     bool highCloud = true;               ///< cirrus layer on
     uint32_t accumulationFrames = 1;     ///< frames averaged, each with new march jitter and sub-pixel offset
+    uint32_t shadowSteps = 48;           ///< density samples per shadow-map texel along the light ray
+    bool readback = true;                ///< copy the images to RenderResult; false leaves them empty (sky-bench)
 };
 
 /// One view to render.
@@ -50,6 +54,9 @@ struct ViewRequest
     uint32_t width = 640;
     uint32_t height = 360;
     int64_t unixTimeS = 0;           ///< UTC time of the view (s since 1970)
+    bool shadowMap = false;          ///< also render the cloud shadow map (skyservice/render/shadow_map.h)
+    uint32_t shadowMapSize = 1024;   ///< shadow map texels per side
+    double shadowMapExtentM = 150000.0;  ///< edge length of the shadow map's square on the ground (m)
 };
 
 /// Pixels and facts of a finished render. Images are row-major, top row first.
@@ -67,6 +74,12 @@ struct RenderResult
     double moonAzimuthDeg = 0, moonElevationDeg = 0, moonIlluminatedFraction = 0;
     double exposure = 1;
     bool moonIsKeyLight = false;
+    /// Cloud shadow map (when ViewRequest::shadowMap): shadowMapSize^2 texels, row-major, north row first,
+    /// west column first (skyservice/render/shadow_map.h); gpuMs["shadowMap"] holds its GPU time.
+    uint32_t shadowMapSize = 0;               ///< texels per side; 0 when no shadow map was rendered
+    std::vector<float> shadowTransmittance;   ///< key-light transmittance through the clouds [0, 1]
+    std::vector<float> shadowOpticalDepth;    ///< cloud optical depth along the light ray (capped at 12)
+    nlohmann::json shadowMap;                 ///< metadata: projection, corners, sun, valid time
 };
 
 }  // namespace sky

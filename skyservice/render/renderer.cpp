@@ -175,6 +175,8 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
         result.gpuMs["composite"] = ms(kTsClouds, kTsComposite);
         result.gpuMs["total"] = ms(kTsStart, kTsComposite);
     }
+    if (!in.quality->readback)
+        return SkyStatus::success();  // timing runs: the GPU work is done, nothing to copy
     std::vector<uint8_t> bytes;
     SKY_TRY(readbackImage(r.ctx, r.memory, r.cloudImage, bytes));
     result.cloudRgbaHalf.resize(bytes.size() / 2);
@@ -210,6 +212,7 @@ SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
     };
     for (const auto& [program, name] : programs)
         SKY_TRY(createProgram(r.ctx, *program, name));
+    SKY_TRY(createShadowMapPass(r.ctx, r.shadowPass));
 
     ImageDesc d;
     d.viewType = VK_IMAGE_VIEW_TYPE_3D;
@@ -253,6 +256,7 @@ void destroyRenderer(Renderer& r)
                        &r.multiscatterLut, &r.skyViewLut, &r.weatherWindowImage, &r.cloudImage, &r.depthImage,
                        &r.linearImage, &r.displayImage})
         destroyImage(r.ctx, r.memory, *img);
+    destroyShadowMapPass(r.ctx, r.memory, r.shadowPass);
     destroyBuffer(r.ctx, r.memory, r.frameUniforms);
     destroyBuffer(r.ctx, r.memory, r.atmosphereUniforms);
     for (Program* p : {&r.baseNoiseProgram, &r.detailNoiseProgram, &r.curlNoiseProgram, &r.transmittanceProgram,
@@ -273,7 +277,7 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
 {
     SKY_TRY(checkRequest(request));
     std::string error;
-    if (!validateNoisePeriods(quality, error))
+    if (!validateNoisePeriods(quality, error) || !validateShadowMapRequest(request, quality, error))
         return SkyStatus::failure(error, VK_ERROR_INITIALIZATION_FAILED);
     auto cpuStart = std::chrono::steady_clock::now();
 
@@ -364,6 +368,8 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     result.moonIlluminatedFraction = sunMoon.moonIlluminatedFraction;
     result.exposure = light.exposure;
     result.moonIsKeyLight = sunMoon.sun.directionEnu.z < -0.07;
+    if (request.shadowMap)
+        SKY_TRY(renderShadowMap(r, request, quality, camera, sunMoon, result));
     return SkyStatus::success();
 }
 

@@ -11,6 +11,7 @@
 
 #include "skyservice/earth/weather_window.h"
 #include "skyservice/render/render_types.h"
+#include "skyservice/render/shadow_map.h"
 #include "skyservice/render/window_analysis.h"
 #include "skyservice/sky/atmosphere_reference.h"
 #include "skyservice/vk/programs.h"
@@ -41,6 +42,7 @@ struct Renderer
     Buffer frameUniforms, atmosphereUniforms;
     VkSampler linearRepeat = VK_NULL_HANDLE, linearClamp = VK_NULL_HANDLE, nearestRepeat = VK_NULL_HANDLE;
     VkQueryPool timestamps = VK_NULL_HANDLE;
+    ShadowMapPass shadowPass;
 
     WeatherSnapshot weather;
     WeatherWindow window;

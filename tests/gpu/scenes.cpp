@@ -208,3 +208,76 @@ std::vector<SkyProbe> cpuSkyProbes(Renderer& r, const ViewRequest& view, int cou
 }
 
 }  // namespace sky::testscenes
+
+namespace sky::testscenes
+{
+
+glm::dvec3 pixelRayEnu(const CameraFrame& cam, const ViewRequest& view, double xPx, double yPx)
+{
+    const double tanHalf = std::tan(view.fovYDeg * M_PI / 360.0);
+    const double aspect = double(view.width) / double(view.height);
+    const double nx = xPx / double(view.width) * 2.0 - 1.0, ny = yPx / double(view.height) * 2.0 - 1.0;
+    return glm::normalize(cam.forwardEnu + nx * tanHalf * aspect * cam.rightEnu - ny * tanHalf * cam.upEnu);
+}
+
+CloudCentroid cloudCentroid(const RenderResult& r, float minAlpha)
+{
+    CloudCentroid c;
+    for (uint32_t y = 0; y < r.height; ++y)
+        for (uint32_t x = 0; x < r.width; ++x)
+        {
+            const float alpha = glm::unpackHalf1x16(r.cloudRgbaHalf[(size_t(y) * r.width + x) * 4 + 3]);
+            if (!(alpha > minAlpha))
+                continue;
+            ++c.pixels;
+            c.weight += double(alpha);
+            c.xPx += double(alpha) * (x + 0.5);
+            c.yPx += double(alpha) * (y + 0.5);
+        }
+    if (c.weight > 0.0)
+    {
+        c.xPx /= c.weight;
+        c.yPx /= c.weight;
+    }
+    return c;
+}
+
+double maxCloudAngleDeg(const RenderResult& r, const CameraFrame& cam, const ViewRequest& view,
+                        const glm::dvec3& directionEnu, float minAlpha, double limitDeg, uint32_t& beyondLimit)
+{
+    const glm::dvec3 target = glm::normalize(directionEnu);
+    double maxDeg = 0;
+    beyondLimit = 0;
+    for (uint32_t y = 0; y < r.height; ++y)
+        for (uint32_t x = 0; x < r.width; ++x)
+        {
+            const float alpha = glm::unpackHalf1x16(r.cloudRgbaHalf[(size_t(y) * r.width + x) * 4 + 3]);
+            if (!(alpha > minAlpha))
+                continue;
+            const glm::dvec3 ray = pixelRayEnu(cam, view, x + 0.5, y + 0.5);
+            const double deg = std::acos(std::clamp(glm::dot(ray, target), -1.0, 1.0)) * 180.0 / M_PI;
+            maxDeg = std::max(maxDeg, deg);
+            if (deg > limitDeg)
+                ++beyondLimit;
+        }
+    return maxDeg;
+}
+
+}  // namespace sky::testscenes
+
+namespace sky::testscenes
+{
+
+WeatherSnapshot highLayer(float coverage, CloudType type, float altitudeM)
+{
+    WeatherSnapshot w = clearSky();
+    size_t n = w.grid.cellCount();
+    w.high.coverage.assign(n, coverage);
+    w.high.altitudeM.assign(n, altitudeM);
+    w.high.type.assign(n, uint8_t(type));
+    w.high.windEastMS.assign(n, 20.0f);
+    w.high.windNorthMS.assign(n, 0.0f);
+    return w;
+}
+
+}  // namespace sky::testscenes

@@ -54,3 +54,38 @@ struct SkyProbe
 std::vector<SkyProbe> cpuSkyProbes(Renderer& r, const ViewRequest& view, int count);
 
 }  // namespace sky::testscenes
+
+namespace sky::testscenes
+{
+
+// --- Geo-referencing (issue 4, tests/gpu/test_georef.cpp) ---
+
+/// Unit view direction (ENU) through a point of the image given in pixels (x right, y down; pixel
+/// (i, j) covers [i, i+1) x [j, j+1)): the mapping of shaders/clouds/view_ray.glsl without jitter.
+glm::dvec3 pixelRayEnu(const CameraFrame& cam, const ViewRequest& view, double xPx, double yPx);
+
+struct CloudCentroid
+{
+    double weight = 0;    ///< sum of alpha over the pixels counted
+    double xPx = 0, yPx = 0;  ///< alpha-weighted centroid of pixel centres (pixels, y down)
+    uint32_t pixels = 0;  ///< pixels with alpha above the threshold
+};
+/// Alpha-weighted centroid of the pixels whose cloud alpha exceeds `minAlpha`.
+CloudCentroid cloudCentroid(const RenderResult& r, float minAlpha);
+
+/// Largest angle (degrees) between `directionEnu` and the ray of any pixel whose cloud alpha exceeds
+/// `minAlpha`; also counts those beyond `limitDeg`.
+double maxCloudAngleDeg(const RenderResult& r, const CameraFrame& cam, const ViewRequest& view,
+                        const glm::dvec3& directionEnu, float minAlpha, double limitDeg, uint32_t& beyondLimit);
+
+}  // namespace sky::testscenes
+
+namespace sky::testscenes
+{
+
+// --- Cloud shadow map (tests/gpu/test_shadow_map.cpp) ---
+
+/// Only a high (2D) layer of uniform coverage, type and altitude over a global 1-degree grid.
+WeatherSnapshot highLayer(float coverage, CloudType type, float altitudeM);
+
+}  // namespace sky::testscenes

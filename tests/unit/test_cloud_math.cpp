@@ -135,8 +135,10 @@ TEST(CloudMath, CoverageRemap)
 {
     EXPECT_EQ(glsl::applyCoverage(0.9f, 0.0f), 0.0f);
     EXPECT_NEAR(glsl::applyCoverage(1.0f, 1.0f), 1.0f, 1e-6f);
-    // Shapes below 1 - coverage vanish; more coverage gives more cloud.
+    // Shapes below the threshold vanish; more coverage gives more cloud; full coverage has no holes.
     EXPECT_EQ(glsl::applyCoverage(0.5f, 0.3f), 0.0f);
+    EXPECT_NEAR(glsl::applyCoverage(0.0f, 1.0f), 1.0f, 1e-6f);
+    EXPECT_EQ(glsl::applyCoverage(0.98f, 0.01f), 0.0f);
     EXPECT_GT(glsl::applyCoverage(0.8f, 0.6f), glsl::applyCoverage(0.8f, 0.3f));
 }
 

@@ -1,0 +1,286 @@
+// SPDX-License-Identifier: MIT
+// sky-bench: GPU time per pass and wall time per frame of the benchmark scenes (issue 5).
+//
+//   sky-bench --scene all --width 1920 --height 1080 --frames 100 --warmup 10 --json bench.json
+//
+// Each scene is rendered `warmup` times untimed (pipeline caches, clocks), then `frames` times with
+// GPU timestamps per pass and the wall time of the renderView call, without reading the images back;
+// then once more with the readback, to check the picture (finite values, cloud share) and optionally
+// to tile it on a contact sheet.
+//
+// --gpu-frames K runs the renderer's accumulation loop: one CPU setup, then K GPU frames back to back
+// (each with new jitter), and a sample is their mean GPU time. It exists because renderView prepares
+// every frame on the CPU (~25 ms on the H100 machine): with one GPU frame per call the GPU idles most of
+// the time and its clock governor drops the SM clock as low as 345 MHz, which inflates GPU timestamps
+// by up to 5x. Back-to-back frames keep the clock up, as a real-time loop would. Exit codes: 0 ok, 1 runtime failure (Vulkan, files, validation
+// messages), 2 bad command line or a mode that does not exist yet.
+#include "skyservice/bench/bench_report.h"
+#include "skyservice/output/contact_sheet.h"
+#include "skyservice/output/image_files.h"
+#include "skyservice/render/renderer.h"
+#include "skyservice/sky/ephemeris.h"
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <glm/gtc/packing.hpp>
+
+namespace sky
+{
+namespace
+{
+
+constexpr int kExitOk = 0, kExitRuntime = 1, kExitUsage = 2;
+// Contact-sheet tiles are shrunk to at most this width so that a sheet of eight 1080p views stays
+// far below the 16 MiB a returned file may have on the device machine.
+constexpr uint32_t kSheetTileMaxWidthPx = 640;
+
+struct BenchOptions
+{
+    std::string scene = "all";
+    uint32_t width = 1920, height = 1080;
+    uint32_t frames = 100, warmup = 10;
+    std::string mode = "full";
+    std::string json;
+    std::string sheet;
+    std::string device;
+    bool validate = false;
+    uint32_t steps = 0;
+    uint32_t gpuFrames = 1;
+    bool shadowMap = false;
+};
+
+std::string utcClock()
+{
+    auto now = std::chrono::system_clock::now();
+    std::time_t t = std::chrono::system_clock::to_time_t(now);
+    std::tm tm = {};
+    gmtime_r(&t, &tm);
+    char text[32];
+    std::strftime(text, sizeof text, "%H:%M:%S", &tm);
+    auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+    return std::string(text) + "." + std::to_string(1000 + ms).substr(1);
+}
+
+nlohmann::json qualityJson(const QualitySettings& q)
+{
+    return {{"maxViewSteps", q.maxViewSteps}, {"lightSamples", q.lightSamples}, {"octaves", q.octaves},
+            {"detail", q.detail},             {"highCloud", q.highCloud},       {"maxDistanceM", q.maxDistanceM},
+            {"gpuFramesPerCall", q.accumulationFrames}, {"baseNoisePeriodM", q.baseNoisePeriodM},
+            {"detailNoisePeriodM", q.detailNoisePeriodM}, {"extinctionPerM", q.extinctionPerM},
+            {"coneStepM", q.coneStepM}};
+}
+
+// Box-filters an image down by an integer factor (contact sheet tiles only).
+ImageRgba8 shrink(const std::vector<uint8_t>& rgba, uint32_t width, uint32_t height)
+{
+    uint32_t f = (width + kSheetTileMaxWidthPx - 1) / kSheetTileMaxWidthPx;
+    ImageRgba8 out;
+    out.width = width / f;
+    out.height = height / f;
+    out.pixels.resize(size_t(out.width) * out.height * 4);
+    for (uint32_t y = 0; y < out.height; ++y)
+        for (uint32_t x = 0; x < out.width; ++x)
+            for (uint32_t c = 0; c < 4; ++c)
+            {
+                uint32_t sum = 0;
+                for (uint32_t dy = 0; dy < f; ++dy)
+                    for (uint32_t dx = 0; dx < f; ++dx)
+                        sum += rgba[((size_t(y * f + dy) * width) + x * f + dx) * 4 + c];
+                out.pixel(x, y)[c] = uint8_t(sum / (f * f));
+            }
+    return out;
+}
+
+void checkPicture(const RenderResult& result, BenchSceneResult& out)
+{
+    size_t pixels = size_t(result.width) * result.height, cloud = 0;
+    for (size_t i = 0; i < pixels * 4; ++i)
+    {
+        float c = glm::unpackHalf1x16(result.cloudRgbaHalf[i]);
+        float lin = glm::unpackHalf1x16(result.linearRgbaHalf[i]);
+        if (!std::isfinite(c) || !std::isfinite(lin) || c < 0.0f || lin < 0.0f)
+            out.allFinite = false;
+        if (i % 4 == 3 && c > 0.5f)
+            ++cloud;
+    }
+    out.cloudFraction = pixels ? double(cloud) / double(pixels) : 0.0;
+}
+
+SkyStatus runScene(Renderer& r, const BenchOptions& o, const BenchScene& scene, const QualitySettings& quality,
+                   BenchSceneResult& out, std::vector<ImageRgba8>& tiles)
+{
+    ViewRequest request;
+    request.pose = scene.pose;
+    request.fovYDeg = scene.fovYDeg;
+    request.width = o.width;
+    request.height = o.height;
+    request.shadowMap = o.shadowMap;
+    std::string error;
+    if (!parseIso8601Utc(scene.timeIso, request.unixTimeS, error))
+        return SkyStatus::failure(scene.name + ": " + error, VK_ERROR_INITIALIZATION_FAILED);
+    setWeather(r, makeBenchWeather(scene, request.unixTimeS));
+
+    out.scene = scene;
+    RenderResult result;
+    for (uint32_t i = 0; i < o.warmup + o.frames; ++i)
+    {
+        auto start = std::chrono::steady_clock::now();
+        SKY_TRY(renderView(r, request, quality, result));
+        double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        if (i < o.warmup)
+            continue;
+        for (const auto& [pass, ms] : result.gpuMs)
+            out.gpuMs[pass].push_back(ms);
+        out.wallMs.push_back(wallMs);
+        out.cpuSetupMs.push_back(result.cpuSetupMs);
+    }
+    QualitySettings checked = quality;
+    checked.readback = true;
+    checked.accumulationFrames = 1;
+    SKY_TRY(renderView(r, request, checked, result));
+    out.sunElevationDeg = result.sunElevationDeg;
+    checkPicture(result, out);
+    if (!o.sheet.empty())
+        tiles.push_back(shrink(result.displayRgba8, result.width, result.height));
+    return SkyStatus::success();
+}
+
+void fillDevice(const Renderer& r, BenchRun& run)
+{
+    const VkPhysicalDeviceProperties& p = r.ctx.properties;
+    run.deviceName = r.ctx.deviceName;
+    run.driver = r.ctx.driverInfo;
+    run.apiVersion = p.apiVersion;
+    run.timestampPeriodNs = r.ctx.timestampPeriodNs;
+    switch (p.deviceType)
+    {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: run.deviceType = "discrete"; break;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: run.deviceType = "integrated"; break;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: run.deviceType = "virtual"; break;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: run.deviceType = "cpu"; break;
+    default: run.deviceType = "other"; break;
+    }
+}
+
+int runBench(const BenchOptions& o)
+{
+    if (o.mode == "reprojected")
+    {
+        std::fprintf(stderr, "sky-bench: --mode reprojected: not implemented yet (temporal reprojection, issue 5); "
+                             "use --mode full\n");
+        return kExitUsage;
+    }
+    std::vector<BenchScene> scenes;
+    std::string error;
+    if (!selectBenchScenes(o.scene, scenes, error))
+    {
+        std::fprintf(stderr, "sky-bench: --scene %s: %s\n", o.scene.c_str(), error.c_str());
+        return kExitUsage;
+    }
+    QualitySettings quality;  // the shipped defaults, no readback while timed
+    quality.accumulationFrames = o.gpuFrames;
+    quality.readback = false;
+    if (o.steps > 0)
+        quality.maxViewSteps = o.steps;
+
+    Renderer r;
+    RendererOptions ro;
+    ro.context.deviceSelector = o.device;
+    ro.context.validation = o.validate;
+    SkyStatus status = createRenderer(r, ro);
+    BenchRun run;
+    std::vector<ImageRgba8> tiles;
+    std::vector<std::string> captions;
+    if (status.ok())
+    {
+        fillDevice(r, run);
+        if (r.ctx.timestampPeriodNs <= 0)
+            std::fprintf(stderr, "sky-bench: %s has no timestamps on its compute queue: GPU columns stay empty\n",
+                         run.deviceName.c_str());
+    }
+    for (size_t i = 0; status.ok() && i < scenes.size(); ++i)
+    {
+        auto start = std::chrono::steady_clock::now();
+        std::string startUtc = utcClock();
+        run.scenes.emplace_back();
+        status = runScene(r, o, scenes[i], quality, run.scenes.back(), tiles);
+        captions.push_back(scenes[i].name);
+        // UTC start and end, to line up with an external clock log (nvidia-smi --query-gpu=timestamp,...).
+        std::fprintf(stderr, "sky-bench: %-19s %ux%u done in %.1f s (UTC %s..%s)\n", scenes[i].name.c_str(), o.width,
+                     o.height, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                     startUtc.c_str(), utcClock().c_str());
+    }
+    if (!status.ok())
+    {
+        std::fprintf(stderr, "sky-bench: %s\n", status.message.c_str());
+        destroyRenderer(r);
+        return kExitRuntime;
+    }
+    {
+        std::lock_guard<std::mutex> lock(r.memory.mutex);
+        run.memory.liveBytes.insert(r.memory.liveBytes.begin(), r.memory.liveBytes.end());
+        run.memory.totalBytes = r.memory.totalBytes;
+        run.memory.peakBytes = r.memory.peakBytes;
+    }
+    run.width = o.width;
+    run.height = o.height;
+    run.frames = o.frames;
+    run.warmup = o.warmup;
+    run.gpuFramesPerCall = o.gpuFrames;
+    run.mode = o.mode;
+    run.quality = qualityJson(quality);
+    printBenchTable(stdout, run);
+
+    int code = kExitOk;
+    if (!o.json.empty() && !writeJsonAtomic(o.json, benchToJson(run), error))
+        code = kExitRuntime;
+    if (code == kExitOk && !o.sheet.empty() && !writePng(o.sheet, makeContactSheet(tiles, captions, 2), error))
+        code = kExitRuntime;
+    if (code != kExitOk)
+        std::fprintf(stderr, "sky-bench: %s\n", error.c_str());
+    if (o.validate && r.ctx.validationMessages.load() > 0)
+    {
+        std::fprintf(stderr, "sky-bench: %u validation messages\n", r.ctx.validationMessages.load());
+        code = kExitRuntime;
+    }
+    destroyRenderer(r);
+    return code;
+}
+
+}  // namespace
+}  // namespace sky
+
+int main(int argc, char** argv)
+{
+    sky::BenchOptions o;
+    CLI::App app{"sky-bench: GPU time per pass and wall time per frame of the benchmark scenes"};
+    app.add_option("--scene", o.scene, "all, a scene name, or names separated by commas");
+    app.add_option("--width", o.width, "Image width (pixels)")->check(CLI::Range(8, 8192));
+    app.add_option("--height", o.height, "Image height (pixels)")->check(CLI::Range(8, 8192));
+    app.add_option("--frames", o.frames, "Timed frames per scene")->check(CLI::Range(1, 100000));
+    app.add_option("--warmup", o.warmup, "Untimed frames per scene before timing")->check(CLI::Range(0, 100000));
+    app.add_option("--mode", o.mode, "full | reprojected (not implemented yet)")
+        ->check(CLI::IsMember({"full", "reprojected"}));
+    app.add_option("--json", o.json, "Write the results as JSON to this file");
+    app.add_option("--sheet", o.sheet, "Write a contact sheet PNG of one frame per scene to this file");
+    app.add_option("--device", o.device, "Vulkan device: index or part of its name (default: best GPU, else CPU)");
+    app.add_flag("--validate", o.validate, "Enable the Vulkan validation layers (fail on any message)");
+    app.add_option("--gpu-frames", o.gpuFrames,
+                   "GPU frames per renderView call, back to back after one CPU setup; a sample is their mean")
+        ->check(CLI::Range(1, 64));
+    app.add_flag("--shadow-map", o.shadowMap, "Also render (and read back) the cloud shadow map every call");
+    app.add_option("--steps", o.steps, "Maximum view samples per ray (default: the renderer's)")
+        ->check(CLI::Range(8, 4096));
+    try
+    {
+        app.parse(argc, argv);
+    }
+    catch (const CLI::ParseError& e)
+    {
+        int code = app.exit(e);
+        return code == 0 ? sky::kExitOk : sky::kExitUsage;
+    }
+    return sky::runBench(o);
+}

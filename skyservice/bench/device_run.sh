@@ -1,0 +1,77 @@
+#!/bin/bash
+# sky-bench on the GPU machine (BENCHMARKS.md "Reproduce"). Run from the repo root through the device
+# tool, after skyservice/bench/device_prepare.sh, with carry [".gl", ".gpu"]:
+#   bash skyservice/bench/device_run.sh
+# Unpacks the carried .debs (the loader into /, build dependencies into /tmp/deps), builds sky-bench and
+# the baseline there (falling back to the binaries built on the dev machine), then times both at
+# 1920x1080, 640x360 and 3840x2160 and writes JSON, the baseline's log and an SM-clock log to $OUT.
+set -u
+ROOT=$PWD; G=$ROOT/.gpu; P=/tmp/deps
+exec > >(tee "$OUT/log.txt") 2>&1
+T0=$(date +%s); el() { echo "[t+$(( $(date +%s) - T0 ))s] $*"; }
+for f in .gl/*.deb; do dpkg -x "$f" /; done; ldconfig
+mkdir -p $P; for f in "$G"/debs/*.deb; do dpkg -x "$f" $P; done
+export LD_LIBRARY_PATH=$P/usr/lib/x86_64-linux-gnu
+export SKY_SPIRV_DIR=$G/spirv
+el "unpacked"; uname -a; nproc; (cmake --version; g++ --version) | grep -i "version\|g++"
+nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm,power.draw,temperature.gpu --format=csv
+
+# Build there (as GPU.md asks); the carried binaries are the fallback.
+BENCH=$G/prebuilt/sky-bench; PROBE=$G/prebuilt/cloudprobe
+if timeout 60 cmake -S "$ROOT" -B /tmp/build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKY_BUILD_TESTS=OFF \
+     -DSKY_BUILD_INGEST=OFF -DSKY_PREBUILT_SPIRV_DIR=$G/spirv -DVulkan_INCLUDE_DIR=$G/include \
+     -DVulkan_LIBRARY=/usr/lib/x86_64-linux-gnu/libvulkan.so.1 -DCMAKE_PREFIX_PATH=$P/usr \
+     -DCMAKE_MODULE_PATH=$P/usr/share/cmake/geographiclib "-DCMAKE_CXX_FLAGS=-isystem $P/usr/include" \
+     -DPKG_CONFIG_EXECUTABLE=$P/usr/bin/pkgconf -DCMAKE_POLICY_VERSION_MINIMUM=3.5 > /tmp/cfg.log 2>&1 &&
+   timeout 240 cmake --build /tmp/build --target sky-bench -j16 > /tmp/build.log 2>&1; then
+  BENCH=/tmp/build/skyservice/sky-bench; el "built sky-bench on the device"
+else
+  el "device build FAILED, using the carried binary"; tail -30 /tmp/cfg.log; tail -40 /tmp/build.log
+fi
+if timeout 60 cmake -S $G/baseline -B /tmp/bb -DCMAKE_BUILD_TYPE=Release -DCLOUDPROBE_SPV=$G/baseline/cloud.comp.spv \
+     -DVulkan_INCLUDE_DIR=$G/include -DVulkan_LIBRARY=/usr/lib/x86_64-linux-gnu/libvulkan.so.1 > /tmp/bcfg.log 2>&1 &&
+   timeout 60 cmake --build /tmp/bb -j16 > /tmp/bbuild.log 2>&1; then
+  PROBE=/tmp/bb/cloudprobe; el "built cloudprobe on the device"
+else
+  el "baseline build FAILED, using the carried binary"; tail -20 /tmp/bcfg.log /tmp/bbuild.log
+fi
+
+# Does the loader find the NVIDIA driver, and do binary and SPIR-V agree? If not, point the loader at
+# the ICD (GPU.md), then fall back to the carried binary (built with the carried SPIR-V).
+probe() { timeout 60 $BENCH --scene clear --width 64 --height 64 --frames 1 --warmup 0 --device NVIDIA > /tmp/probe.log 2>&1; }
+if ! probe; then
+  cat /tmp/probe.log; export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+  el "retrying with VK_DRIVER_FILES"
+  if ! probe; then
+    cat /tmp/probe.log; BENCH=$G/prebuilt/sky-bench; el "retrying with the carried binary"
+    probe || { cat /tmp/probe.log; unset VK_DRIVER_FILES; el "and without VK_DRIVER_FILES"; probe || cat /tmp/probe.log; }
+  fi
+fi
+el "using $BENCH"
+
+# SM clock while we measure (the GPU may idle down between calls while the CPU prepares the next).
+Q=timestamp,clocks.sm,utilization.gpu,power.draw,clocks_event_reasons.active
+nvidia-smi --query-gpu=$Q --format=csv -c 1 > /dev/null 2>&1 || Q=timestamp,clocks.sm,utilization.gpu,power.draw
+nvidia-smi --query-gpu=$Q --format=csv,noheader -lms 200 > "$OUT/clocks.csv" 2>/dev/null &
+CLK=$!
+
+bench() {  # W H SAMPLES LIMIT_S JSON EXTRA
+  el "sky-bench $1x$2 $6"
+  timeout $4 $BENCH --scene all --width $1 --height $2 --frames $3 --warmup 10 --gpu-frames 4 --device NVIDIA \
+    --json "$OUT/$5" $6
+  el "sky-bench $1x$2 rc=$?"
+}
+base() {  # W H
+  el "baseline $1x$2"
+  timeout 120 $PROBE --spv $G/baseline/cloud.comp.spv --width $1 --height $2 --frames 100 --out /tmp/base-$1x$2 \
+    2>&1 | tee -a "$OUT/baseline.txt" | grep -i "using device\|driver\|FULL\|1/16\|timestamp"
+}
+bench 1920 1080 100 180 bench-1920x1080.json ""
+base 1920 1080
+bench 640 360 100 150 bench-640x360.json ""
+base 640 360
+bench 3840 2160 30 150 bench-3840x2160.json ""
+base 3840 2160
+bench 1920 1080 20 90 bench-1920x1080-shadow.json --shadow-map
+kill $CLK
+el "done"

@@ -1,0 +1,203 @@
+// SPDX-License-Identifier: MIT
+#include "skyservice/render/shadow_map.h"
+
+#include "skyservice/render/renderer.h"
+
+#include <GeographicLib/AzimuthalEquidistant.hpp>
+#include <GeographicLib/Geodesic.hpp>
+#include <glm/gtc/packing.hpp>
+
+#include <cstddef>
+#include <cstring>
+
+static_assert(sizeof(ShadowMapPush) == 3 * 16, "ShadowMapPush must stay 3 vec4");
+static_assert(offsetof(ShadowMapPush, grid) == 16, "ShadowMapPush.grid moved");
+static_assert(offsetof(ShadowMapPush, params) == 32, "ShadowMapPush.params moved");
+
+namespace sky
+{
+namespace
+{
+
+// Timestamp slots borrowed from the renderer's pool: the frame's own queries are read before this runs.
+constexpr uint32_t kTsBegin = 0;
+constexpr uint32_t kTsEnd = 1;
+
+nlohmann::json latLonJson(const ShadowMapGeometry& g, double eastM, double northM)
+{
+    double lat = 0, lon = 0;
+    g.toLatLon(glm::dvec2(eastM, northM), lat, lon);
+    return {{"latDeg", lat}, {"lonDeg", lon}, {"eastingM", eastM}, {"northingM", northM}};
+}
+
+nlohmann::json directionJson(const CelestialPosition& body)
+{
+    const glm::dvec3& d = body.directionEnu;
+    return {{"directionEnu", {d.x, d.y, d.z}}, {"azimuthDeg", body.azimuthDeg}, {"elevationDeg", body.elevationDeg}};
+}
+
+SkyStatus ensureShadowImage(Renderer& r, uint32_t size)
+{
+    ShadowMapPass& pass = r.shadowPass;
+    if (pass.image.image && pass.image.extent.width == size)
+        return SkyStatus::success();
+    VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize only: never in steady state
+    destroyImage(r.ctx, r.memory, pass.image);
+    ImageDesc d;
+    d.width = d.height = size;
+    d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+    SKY_TRY(createImage(r.ctx, r.memory, pass.image, d, "cloud shadow map"));
+    OneShot shot;
+    SKY_TRY(beginOneShot(r.ctx, shot));
+    transitionImage(shot.cmd, pass.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    return endOneShot(r.ctx, shot);
+}
+
+}  // namespace
+
+glm::dvec2 ShadowMapGeometry::planePositionM(double column, double row) const
+{
+    double half = 0.5 * extentM;
+    return glm::dvec2(column * texelSizeM() - half, half - row * texelSizeM());
+}
+
+void ShadowMapGeometry::toLatLon(const glm::dvec2& eastNorthM, double& latDeg, double& lonDeg) const
+{
+    const GeographicLib::AzimuthalEquidistant projection(GeographicLib::Geodesic::WGS84());
+    double azi = 0, rk = 0;
+    projection.Reverse(centreLatDeg, centreLonDeg, eastNorthM.x, eastNorthM.y, latDeg, lonDeg, azi, rk);
+}
+
+glm::dvec2 ShadowMapGeometry::fromLatLon(double latDeg, double lonDeg) const
+{
+    const GeographicLib::AzimuthalEquidistant projection(GeographicLib::Geodesic::WGS84());
+    double x = 0, y = 0, azi = 0, rk = 0;
+    projection.Forward(centreLatDeg, centreLonDeg, latDeg, lonDeg, x, y, azi, rk);
+    return glm::dvec2(x, y);
+}
+
+bool moonIsKeyLight(const SunMoon& sunMoon) { return sunMoon.sun.directionEnu.z < -0.07; }
+
+bool validateShadowMapRequest(const ViewRequest& request, const QualitySettings& quality, std::string& error)
+{
+    if (!request.shadowMap)
+        return true;
+    if (request.shadowMapSize < 8 || request.shadowMapSize > 8192)
+    {
+        error = "shadow map size " + std::to_string(request.shadowMapSize) + " outside 8..8192 texels";
+        return false;
+    }
+    double maxExtentM = 2.0 * quality.windowHalfExtentM;
+    if (!(request.shadowMapExtentM >= 100.0 && request.shadowMapExtentM <= maxExtentM))
+    {
+        error = "shadow map extent " + std::to_string(request.shadowMapExtentM) + " m outside 100.." +
+                std::to_string(maxExtentM) + " m (the weather window must cover it)";
+        return false;
+    }
+    if (quality.shadowSteps < 1 || quality.shadowSteps > 1024)
+    {
+        error = "shadow map steps " + std::to_string(quality.shadowSteps) + " outside 1..1024";
+        return false;
+    }
+    return true;
+}
+
+nlohmann::json shadowMapMetadata(const ShadowMapGeometry& g, const SunMoon& sunMoon, double earthRadiusM,
+                                 int64_t unixTimeS, int64_t weatherValidTimeUnixS)
+{
+    double half = 0.5 * g.extentM;
+    bool moon = moonIsKeyLight(sunMoon);
+    nlohmann::json j;
+    j["projection"] = "azimuthal equidistant centred on the eye, on the local osculating sphere (radius "
+                      "earthRadiusM) at altitude 0; plane to lat/lon by GeographicLib::AzimuthalEquidistant "
+                      "on WGS84 (geodesic distance and azimuth from the centre), as the weather window";
+    j["centre"] = {{"latDeg", g.centreLatDeg}, {"lonDeg", g.centreLonDeg}};
+    j["sizeTexels"] = g.sizeTexels;
+    j["extentM"] = g.extentM;
+    j["texelSizeM"] = g.texelSizeM();
+    j["earthRadiusM"] = earthRadiusM;
+    j["texelConvention"] = "column i from the west edge, row j from the north edge (top row first); the centre "
+                           "of texel (i, j) is at easting (i + 0.5) * texelSizeM - extentM / 2, northing "
+                           "extentM / 2 - (j + 0.5) * texelSizeM";
+    j["corners"] = {{"northWest", latLonJson(g, -half, half)},
+                    {"northEast", latLonJson(g, half, half)},
+                    {"southEast", latLonJson(g, half, -half)},
+                    {"southWest", latLonJson(g, -half, -half)}};
+    j["cornersAre"] = "outer corners of the grid (texel edges), not texel centres";
+    j["sun"] = directionJson(sunMoon.sun);
+    j["keyLight"] = moon ? "moon" : "sun";
+    j["keyLightDirection"] = directionJson(moon ? sunMoon.moon : sunMoon.sun);
+    j["directionFrame"] = "unit vector east, north, up at the centre; elevation geometric (no refraction)";
+    j["validTime"] = formatIso8601Utc(unixTimeS);
+    j["weatherValidTime"] = formatIso8601Utc(weatherValidTimeUnixS);
+    j["values"] = "transmittance of the key light through every cloud layer (volumetric and cirrus), 1 = clear, "
+                  "0 = full shadow or the light below the local horizon";
+    return j;
+}
+
+SkyStatus createShadowMapPass(const Context& ctx, ShadowMapPass& pass)
+{
+    return createProgram(ctx, pass.program, "shadow_map");
+}
+
+void destroyShadowMapPass(const Context& ctx, MemoryTracker& memory, ShadowMapPass& pass)
+{
+    destroyImage(ctx, memory, pass.image);
+    destroyProgram(ctx, pass.program);
+}
+
+SkyStatus renderShadowMap(Renderer& r, const ViewRequest& request, const QualitySettings& quality,
+                          const CameraFrame& camera, const SunMoon& sunMoon, RenderResult& result)
+{
+    const uint32_t size = request.shadowMapSize;
+    SKY_TRY(ensureShadowImage(r, size));
+    ShadowMapGeometry g;
+    g.centreLatDeg = camera.eye.latDeg;
+    g.centreLonDeg = camera.eye.lonDeg;
+    g.sizeTexels = size;
+    g.extentM = request.shadowMapExtentM;
+
+    ShadowMapPush push;
+    std::memset(&push, 0, sizeof push);
+    const glm::dvec3& light = moonIsKeyLight(sunMoon) ? sunMoon.moon.directionEnu : sunMoon.sun.directionEnu;
+    push.lightDirection = vec4(float(light.x), float(light.y), float(light.z), 0.0f);
+    push.grid = vec4(float(g.texelSizeM()), float(0.5 * g.extentM), 0.0f, 0.0f);
+    push.params = uvec4(size, quality.shadowSteps, 0u, 0u);
+
+    OneShot shot;
+    SKY_TRY(beginOneShot(r.ctx, shot));
+    vkCmdResetQueryPool(shot.cmd, r.timestamps, kTsBegin, 2);
+    vkCmdWriteTimestamp(shot.cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r.timestamps, kTsBegin);
+    dispatch(r.ctx, shot.cmd, r.shadowPass.program, size, size, 1, push,
+             {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.weatherWindowImage, r.linearClamp),
+              DescriptorInfo(r.baseNoise, r.linearRepeat), DescriptorInfo(r.detailNoise, r.linearRepeat),
+              DescriptorInfo(r.curlNoise, r.linearRepeat), DescriptorInfo(r.shadowPass.image)});
+    computeBarrier(shot.cmd);
+    vkCmdWriteTimestamp(shot.cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsEnd);
+    SKY_TRY(endOneShot(r.ctx, shot));
+    uint64_t ts[2] = {0, 0};
+    if (r.ctx.timestampPeriodNs > 0 &&
+        vkGetQueryPoolResults(r.ctx.device, r.timestamps, kTsBegin, 2, sizeof ts, ts, sizeof(uint64_t),
+                              VK_QUERY_RESULT_64_BIT) == VK_SUCCESS)
+        result.gpuMs["shadowMap"] = double(ts[kTsEnd] - ts[kTsBegin]) * r.ctx.timestampPeriodNs * 1e-6;
+
+    std::vector<uint8_t> bytes;
+    SKY_TRY(readbackImage(r.ctx, r.memory, r.shadowPass.image, bytes));
+    size_t texels = size_t(size) * size;
+    std::vector<uint16_t> halves(bytes.size() / 2);
+    std::memcpy(halves.data(), bytes.data(), halves.size() * 2);
+    result.shadowMapSize = size;
+    result.shadowTransmittance.resize(texels);
+    result.shadowOpticalDepth.resize(texels);
+    for (size_t i = 0; i < texels; ++i)
+    {
+        result.shadowTransmittance[i] = glm::unpackHalf1x16(halves[i * 4 + 0]);
+        result.shadowOpticalDepth[i] = glm::unpackHalf1x16(halves[i * 4 + 1]);
+    }
+    result.shadowMap = shadowMapMetadata(g, sunMoon, camera.localEarthRadiusM, request.unixTimeS,
+                                         r.weather.validTimeUnixS);
+    return SkyStatus::success();
+}
+
+}  // namespace sky

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: MIT
+// The geo-referenced cloud shadow map (DESIGN §3): key-light transmittance through every cloud layer
+// (volumetric and cirrus) on a square grid of ground points centred on the eye, plus the metadata an
+// image generator needs to drape it on its terrain.
+//
+// Projection: the weather window's (shaders/shared/shadow_map_params.h has the texel convention).
+// The map plane is the azimuthal equidistant projection centred on the eye: the point at easting x,
+// northing y lies at distance sqrt(x^2 + y^2) from the eye along azimuth atan2(x, y). Its latitude and
+// longitude are GeographicLib::AzimuthalEquidistant(Geodesic::WGS84()).Reverse (geodesics on WGS84),
+// which is how the weather window places the model's cells; the GPU puts the same point on the eye's
+// osculating sphere (error < 1 m within 50 km, 10 m at 200 km: skyservice/earth/geodesy.h).
+//
+// Usage (inside renderView, after the frame): validateShadowMapRequest, then renderShadowMap.
+#pragma once
+
+#include "shaders/shared/shadow_map_params.h"
+#include "skyservice/render/render_types.h"
+#include "skyservice/sky/ephemeris.h"
+#include "skyservice/vk/programs.h"
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace sky
+{
+
+struct Renderer;
+
+/// Where the texels of a shadow map lie on the earth.
+struct ShadowMapGeometry
+{
+    double centreLatDeg = 0;  ///< latitude of the projection centre, the eye (degrees)
+    double centreLonDeg = 0;  ///< longitude of the projection centre (degrees)
+    uint32_t sizeTexels = 0;  ///< texels per side
+    double extentM = 0;       ///< edge length of the square (meters)
+
+    /// Edge length of one texel (meters).
+    double texelSizeM() const { return extentM / double(sizeTexels); }
+    /**
+     * @param[in] column texel column from the west edge (0.5 = centre of the first column).
+     * @param[in] row texel row from the north edge (0.5 = centre of the first row).
+     * @return easting and northing on the projection plane (meters from the centre).
+     **********************************************************************/
+    glm::dvec2 planePositionM(double column, double row) const;
+    /**
+     * @param[in] eastNorthM easting and northing on the projection plane (meters).
+     * @param[out] latDeg latitude (degrees).
+     * @param[out] lonDeg longitude (degrees, [-180, 180]).
+     **********************************************************************/
+    void toLatLon(const glm::dvec2& eastNorthM, double& latDeg, double& lonDeg) const;
+    /**
+     * @param[in] latDeg latitude (degrees).
+     * @param[in] lonDeg longitude (degrees).
+     * @return easting and northing on the projection plane (meters).
+     **********************************************************************/
+    glm::dvec2 fromLatLon(double latDeg, double lonDeg) const;
+};
+
+/// The key light of the clouds, as the cloud shaders pick it (cloud_lighting.glsl, moonIsKeyLight):
+/// the sun down to 4 degrees below the horizon (z > -0.07), else the moon.
+bool moonIsKeyLight(const SunMoon& sunMoon);
+
+/**
+ * Check the shadow-map part of a request.
+ *
+ * @param[in] request the view; shadowMapSize must be in [8, 8192], shadowMapExtentM in [100 m, 2 x the
+ *   weather window's half extent] (the weather window must cover the map).
+ * @param[in] quality the settings; shadowSteps must be in [1, 1024].
+ * @param[out] error a message naming the field when the request is invalid.
+ * @return true when the request is valid or asks for no shadow map.
+ **********************************************************************/
+bool validateShadowMapRequest(const ViewRequest& request, const QualitySettings& quality, std::string& error);
+
+/**
+ * The metadata of a shadow map, as written under "shadowMap" in the render's JSON sidecar.
+ *
+ * @param[in] geometry where the map lies.
+ * @param[in] sunMoon the sun and moon at the eye.
+ * @param[in] earthRadiusM radius of the osculating sphere the GPU used (meters).
+ * @param[in] unixTimeS the view's UTC time, the map's valid time (s since 1970).
+ * @param[in] weatherValidTimeUnixS the weather snapshot's valid time (s since 1970).
+ * @return projection, centre, extent, texel size, corners (outer edges of the grid, lat/lon by
+ *   AzimuthalEquidistant::Reverse on WGS84), sun and key-light direction (ENU unit vector, azimuth,
+ *   elevation), valid times, and what the pixels hold.
+ **********************************************************************/
+nlohmann::json shadowMapMetadata(const ShadowMapGeometry& geometry, const SunMoon& sunMoon, double earthRadiusM,
+                                 int64_t unixTimeS, int64_t weatherValidTimeUnixS);
+
+/// GPU objects of the pass, owned by the Renderer.
+struct ShadowMapPass
+{
+    Program program;
+    Image image;  ///< rgba16f, sizeTexels^2, GENERAL layout; (re)made when the size changes
+};
+
+/// Loads the shadow_map program (the image is made on first use).
+SkyStatus createShadowMapPass(const Context& ctx, ShadowMapPass& pass);
+void destroyShadowMapPass(const Context& ctx, MemoryTracker& memory, ShadowMapPass& pass);
+
+/**
+ * Render the shadow map of the frame just rendered and read it back.
+ *
+ * @param[in,out] r the renderer; r.frameUniforms, r.window and r.weatherWindowImage must hold the frame
+ *   (renderView calls this after its last frame).
+ * @param[in] request the view (shadowMapSize, shadowMapExtentM; validated).
+ * @param[in] quality the settings (shadowSteps).
+ * @param[in] camera the eye's frame (centre of the map, osculating radius).
+ * @param[in] sunMoon the sun and moon at the eye.
+ * @param[out] result shadowMapSize, shadowTransmittance, shadowOpticalDepth, shadowMap (metadata) and
+ *   gpuMs["shadowMap"].
+ * @return success, or the Vulkan failure.
+ **********************************************************************/
+SkyStatus renderShadowMap(Renderer& r, const ViewRequest& request, const QualitySettings& quality,
+                          const CameraFrame& camera, const SunMoon& sunMoon, RenderResult& result);
+
+}  // namespace sky

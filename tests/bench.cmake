@@ -1,0 +1,26 @@
+# sky-bench command-line tests (bench.*): exit codes, messages and the shape of its output. Timings are
+# never asserted here (DESIGN §6: lavapipe wall clock means nothing); BENCHMARKS.md holds GPU figures.
+set(SKY_BENCH_EXPECT ${CMAKE_CURRENT_LIST_DIR}/cli/expect.sh)
+set(SKY_BENCH_BIN $<TARGET_FILE:sky-bench>)
+set(SKY_BENCH_TMP ${CMAKE_CURRENT_BINARY_DIR}/bench_tmp)
+file(MAKE_DIRECTORY ${SKY_BENCH_TMP})
+
+# Reprojection does not exist yet: the mode must say so and exit 2, never time something else.
+add_test(NAME bench.reprojected_not_implemented COMMAND ${SKY_BENCH_EXPECT} 2 "reprojected: not implemented yet"
+         ${SKY_BENCH_BIN} --mode reprojected)
+# An unknown scene is a usage error that lists the known ones.
+add_test(NAME bench.unknown_scene COMMAND ${SKY_BENCH_EXPECT} 2 "unknown scene \"fog\".*above-deck-FL350"
+         ${SKY_BENCH_BIN} --scene fog)
+# Modes other than full and reprojected are refused by the parser.
+add_test(NAME bench.bad_mode COMMAND ${SKY_BENCH_EXPECT} 2 "mode" ${SKY_BENCH_BIN} --mode half)
+# A tiny clear-sky run with validation on prints a row with four passes and the wall time (median/p95),
+# the CPU setup time, and no cloud.
+add_test(NAME bench.clear_small_validated COMMAND ${SKY_BENCH_EXPECT} 0
+         "^clear( +[0-9.]+/[0-9.]+){5} +[0-9.]+ +0\\.0$"
+         ${SKY_BENCH_BIN} --scene clear --width 32 --height 18 --frames 2 --warmup 1 --gpu-frames 2 --validate
+         --json ${SKY_BENCH_TMP}/clear.json)
+set_tests_properties(bench.clear_small_validated PROPERTIES TIMEOUT 120)
+# The JSON names the device, the size and the per-pass medians.
+add_test(NAME bench.clear_json COMMAND ${CMAKE_COMMAND} -E cat ${SKY_BENCH_TMP}/clear.json)
+set_tests_properties(bench.clear_json PROPERTIES DEPENDS bench.clear_small_validated
+                     PASS_REGULAR_EXPRESSION "\"gpuFramesPerCall\": 2.*\"height\": 18.*\"totalBytes\".*\"name\": \"clear\"")

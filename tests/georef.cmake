@@ -1,0 +1,10 @@
+# Geo-referencing tests (issue 4, georef.*): an isolated cell lands in the direction GeographicLib
+# gives (mid-latitude, 78 N, across the antimeridian); the real GFS sample renders its low deck and its
+# clear sky. GPU tests, validation on.
+add_executable(test_georef gpu/test_georef.cpp gpu/scenes.cpp)
+target_link_libraries(test_georef PRIVATE sky_renderer GTest::gtest_main sky_warnings)
+if(TARGET sky_ingest)
+    target_link_libraries(test_georef PRIVATE sky_ingest)
+    target_compile_definitions(test_georef PRIVATE SKY_HAVE_INGEST SKY_SHARED_DIR="${SKY_SHARED_DIR}")
+endif()
+gtest_discover_tests(test_georef TEST_PREFIX "georef." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900)
