@@ -130,6 +130,10 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         else
         {
             shape *= cloudHeightProfile(cloudType, hf);
+            // Cumulus domes: the cloud narrows toward its top (the coverage threshold rises with height),
+            // so a vertically coherent column ends in a rounded top rather than a flat plateau.
+            if (cloudType == CLOUD_TYPE_CUMULUS)
+                coverage *= 1.0f - 0.6f * smoothstep(0.15f, 1.0f, hf);
             if (cloudType == CLOUD_TYPE_CUMULONIMBUS)
             {
                 // The tower narrows with height (towers are 5-10 km wide at mid level, the cell wider at

@@ -80,9 +80,9 @@ float applyCoverage(float baseShape, float coverage)
 {
     if (coverage <= 0.0f)
         return 0.0f;
-    // Threshold 1 - c (fraction ~c); above 85 % coverage it slides down to -s so that full coverage has
-    // no holes, while a 0.9 deck keeps lumpy tops and a few gaps.
-    float threshold = 1.0f - coverage - COVERAGE_SOFTNESS * smoothstep(0.85f, 1.0f, coverage);
+    // Threshold 1 - c (fraction ~c); above 97 % coverage it slides down to -s so that full coverage has
+    // no holes, while a 0.9-0.96 deck keeps lumpy tops and a few gaps.
+    float threshold = 1.0f - coverage - COVERAGE_SOFTNESS * smoothstep(0.97f, 1.0f, coverage);
     return saturate1(remapValue(baseShape, threshold, threshold + COVERAGE_SOFTNESS, 0.0f, 1.0f));
 }
 

@@ -6,6 +6,7 @@
 #include "skyservice/render/renderer.h"
 #include "skyservice/sky/ephemeris.h"
 #include "skyservice/sky/weather_places.h"
+#include "tests/gpu/gpu_fixture.h"
 #include "tests/gpu/scenes.h"
 
 #ifdef SKY_HAVE_INGEST
@@ -27,28 +28,9 @@ using namespace sky::testscenes;
 namespace
 {
 
-class Georef : public ::testing::Test
+class Georef : public GpuFixture
 {
-  protected:
-    static Renderer* renderer;
-
-    static void SetUpTestSuite()
-    {
-        renderer = new Renderer;
-        RendererOptions options;
-        options.context.validation = true;
-        options.context.quiet = true;
-        options.noiseSeed = 7;
-        SkyStatus s = createRenderer(*renderer, options);
-        ASSERT_TRUE(s.ok()) << s.message;
-    }
-    static void TearDownTestSuite()
-    {
-        destroyRenderer(*renderer);
-        delete renderer;
-        renderer = nullptr;
-    }
-    void TearDown() override { EXPECT_EQ(renderer->ctx.validationMessages.load(), 0u) << "Vulkan validation messages"; }
+protected:
 
     RenderResult render(const WeatherSnapshot& weather, const ViewRequest& request)
     {
@@ -114,7 +96,6 @@ class Georef : public ::testing::Test
         EXPECT_EQ(stray, 0u) << "cloud pixels more than 5 degrees from the cell (up to " << spreadDeg << " deg)";
     }
 };
-Renderer* Georef::renderer = nullptr;
 
 }  // namespace
 

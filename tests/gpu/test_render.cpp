@@ -6,6 +6,7 @@
 #include "skyservice/sky/atmosphere.h"
 #include "skyservice/sky/builtin_weather.h"
 #include "skyservice/sky/ephemeris.h"
+#include "tests/gpu/gpu_fixture.h"
 #include "tests/gpu/scenes.h"
 
 #include <glm/gtc/packing.hpp>
@@ -29,28 +30,9 @@ using namespace sky::testscenes;
 namespace
 {
 
-class GpuRender : public ::testing::Test
+class GpuRender : public GpuFixture
 {
 protected:
-    static Renderer* renderer;
-
-    static void SetUpTestSuite()
-    {
-        renderer = new Renderer;
-        RendererOptions options;
-        options.context.validation = true;
-        options.context.quiet = true;
-        options.noiseSeed = 7;
-        SkyStatus s = createRenderer(*renderer, options);
-        ASSERT_TRUE(s.ok()) << s.message;
-    }
-    static void TearDownTestSuite()
-    {
-        destroyRenderer(*renderer);
-        delete renderer;
-        renderer = nullptr;
-    }
-    void TearDown() override { EXPECT_EQ(renderer->ctx.validationMessages.load(), 0u) << "Vulkan validation messages"; }
 
     RenderResult render(const WeatherSnapshot& weather, const ViewRequest& request, QualitySettings q = testQuality())
     {
@@ -61,7 +43,6 @@ protected:
         return result;
     }
 };
-Renderer* GpuRender::renderer = nullptr;
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 #include "skyservice/output/image_files.h"
 #include "skyservice/render/renderer.h"
 #include "skyservice/render/shadow_map.h"
+#include "tests/gpu/gpu_fixture.h"
 #include "tests/gpu/scenes.h"
 
 #include <GeographicLib/Geodesic.hpp>
@@ -31,28 +32,9 @@ constexpr double kEyeLonDeg = 7.0;
 constexpr uint32_t kMapSize = 128;
 constexpr double kMapExtentM = 40000.0;  // 312.5 m texels
 
-class ShadowMap : public ::testing::Test
+class ShadowMap : public GpuFixture
 {
 protected:
-    static Renderer* renderer;
-
-    static void SetUpTestSuite()
-    {
-        renderer = new Renderer;
-        RendererOptions options;
-        options.context.validation = true;
-        options.context.quiet = true;
-        options.noiseSeed = 7;
-        SkyStatus s = createRenderer(*renderer, options);
-        ASSERT_TRUE(s.ok()) << s.message;
-    }
-    static void TearDownTestSuite()
-    {
-        destroyRenderer(*renderer);
-        delete renderer;
-        renderer = nullptr;
-    }
-    void TearDown() override { EXPECT_EQ(renderer->ctx.validationMessages.load(), 0u) << "Vulkan validation messages"; }
 
     void checkCellShadow(double eyeLatDeg, double eyeLonDeg, double cellLatDeg, double cellLonDeg, int64_t unixTimeS);
 
@@ -80,7 +62,6 @@ protected:
         return result;
     }
 };
-Renderer* ShadowMap::renderer = nullptr;
 
 ShadowMapGeometry testGeometry(double eyeLatDeg = kEyeLatDeg, double eyeLonDeg = kEyeLonDeg)
 {

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// The fixture every GPU test suite derives from: one Renderer per suite on the available Vulkan device
+// (lavapipe in CI) with validation on, and a check after each test that no validation message came.
+#pragma once
+
+#include "skyservice/render/renderer.h"
+
+#include <gtest/gtest.h>
+
+namespace sky::testscenes
+{
+
+class GpuFixture : public ::testing::Test
+{
+protected:
+    static inline Renderer* renderer = nullptr;
+
+    static void SetUpTestSuite()
+    {
+        renderer = new Renderer;
+        RendererOptions options;
+        options.context.validation = true;
+        options.context.quiet = true;
+        options.noiseSeed = 7;
+        SkyStatus s = createRenderer(*renderer, options);
+        ASSERT_TRUE(s.ok()) << s.message;
+    }
+    static void TearDownTestSuite()
+    {
+        destroyRenderer(*renderer);
+        delete renderer;
+        renderer = nullptr;
+    }
+    void TearDown() override
+    {
+        EXPECT_EQ(renderer->ctx.validationMessages.load(), 0u) << "Vulkan validation messages";
+    }
+};
+
+}  // namespace sky::testscenes
