@@ -60,7 +60,10 @@ WeatherLookup weatherLookup(vec2 mapPosM)
 float baseShapeAt(vec3 noisePos)
 {
     vec4 n = textureLod(baseNoise, noisePos / frame.noiseScale.x, 0.0f);
-    float lowFreqFbm = n.y * 0.625f + n.z * 0.25f + n.w * 0.125f;
+    // Half of the low-frequency FBM comes from a second lookup at 3x the period, so that the 128^3 tile
+    // does not visibly repeat every period across a wide view or the shadow map (it repeats every 3).
+    vec4 m = textureLod(baseNoise, noisePos / (3.0f * frame.noiseScale.x) + vec3(0.37f, 0.11f, 0.73f), 0.0f);
+    float lowFreqFbm = 0.5f * (n.y * 0.625f + n.z * 0.25f + n.w * 0.125f) + 0.5f * (m.y * 0.625f + m.z * 0.25f + m.w * 0.125f);
     return equalizeBaseShape(remapValue(n.x, lowFreqFbm - 1.0f, 1.0f, 0.0f, 1.0f));
 }
 

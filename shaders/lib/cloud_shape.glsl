@@ -59,12 +59,13 @@ float anvilDensity(float h)
     return bottom * top;
 }
 
-// The base shape remap(R, lowFreqFbm - 1, 1, 0, 1) of our 128^3 noise is close to normal with this
-// mean and spread (measured over the texture; tests/unit/test_cloud_math.cpp keeps them true). Mapping
+// The base shape remap(R, lowFreqFbm - 1, 1, 0, 1) of our 128^3 noise (lowFreqFbm half from the same
+// texel, half from an independent one: cloud_density.glsl) is close to normal with this mean and spread
+// (measured over the texture; tests/unit/test_cloud_math.cpp keeps them true). Mapping
 // it through the normal CDF (logistic approximation, Bowling et al. 2009: 1.702) makes it uniform in
 // [0,1], so that a coverage c leaves a cloud fraction of about c where the height profile is 1.
-SKY_CONST float BASE_SHAPE_MEAN = 0.8305f;
-SKY_CONST float BASE_SHAPE_SD = 0.0418f;
+SKY_CONST float BASE_SHAPE_MEAN = 0.8293f;
+SKY_CONST float BASE_SHAPE_SD = 0.0457f;
 
 float equalizeBaseShape(float shape)
 {

@@ -35,7 +35,9 @@ bool validateNoisePeriods(const QualitySettings& q, std::string& error)
 {
     double m = noiseOffsetModulusM(q);
     // The high-cloud shader also uses 1/8 and 1/2 of its period.
-    for (double p : {q.baseNoisePeriodM, q.detailNoisePeriodM, q.curlNoisePeriodM, q.highNoisePeriodM / 8.0})
+    // The base noise is also read at 3x its period (cloud_density.glsl).
+    for (double p : {q.baseNoisePeriodM, 3.0 * q.baseNoisePeriodM, q.detailNoisePeriodM, q.curlNoisePeriodM,
+                     q.highNoisePeriodM / 8.0})
         if (!divides(p, m))
         {
             error = "noise period " + std::to_string(p) + " m does not divide " + std::to_string(m) +

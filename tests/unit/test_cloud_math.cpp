@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Cloud shader math (shaders/lib/shell.glsl, cloud_shape.glsl) compiled as C++ and checked against
 // analytic cases and a double-precision reference (STYLE §8, §16).
+#include "shaders/shared/noise_params.h"
 #include "shaders/shared/weather_window.h"
 
 #include <gtest/gtest.h>
@@ -14,10 +15,12 @@ namespace glsl
 using namespace glm;
 #include "shaders/lib/shell.glsl"
 #include "shaders/lib/cloud_shape.glsl"
+#include "shaders/lib/noise.glsl"
 }  // namespace glsl
 #pragma GCC diagnostic pop
 
 #include <cmath>
+#include <random>
 
 namespace
 {
@@ -164,4 +167,39 @@ TEST(CloudMath, EnergyConservingIntegrationIsSplitInvariant)
                   std::exp(-sigma * dt / 2) * glsl::integrateScattering(S, sigma, dt / 2);
     EXPECT_NEAR(whole.x, halves.x, 1e-5f);
     EXPECT_NEAR(glsl::integrateScattering(S, 0.0f, dt).y, S.y * dt, 1e-4f);
+}
+
+// The coverage mapping assumes the base shape's distribution (BASE_SHAPE_MEAN, BASE_SHAPE_SD in
+// cloud_shape.glsl): recompute it from the noise recipe, as cloud_density.glsl combines it (R and half
+// of the low-frequency FBM from one texel, the other half from an independent one), 8-bit quantised.
+TEST(CloudMath, BaseShapeStatisticsMatchTheEqualisationConstants)
+{
+    std::mt19937 rng(3);
+    std::uniform_int_distribution<uint32_t> texel(0, BASE_NOISE_SIZE - 1);
+    double sum = 0, sumSq = 0;
+    const int n = 20000;
+    std::vector<float> equalised;
+    for (int i = 0; i < n; ++i)
+    {
+        glm::vec4 a = glsl::baseNoiseTexel(glm::uvec3(texel(rng), texel(rng), texel(rng)), BASE_NOISE_SIZE, 1u);
+        glm::vec4 b = glsl::baseNoiseTexel(glm::uvec3(texel(rng), texel(rng), texel(rng)), BASE_NOISE_SIZE, 1u);
+        a = glm::round(a * 255.0f) / 255.0f;
+        b = glm::round(b * 255.0f) / 255.0f;
+        float low = 0.5f * (a.y * 0.625f + a.z * 0.25f + a.w * 0.125f) + 0.5f * (b.y * 0.625f + b.z * 0.25f + b.w * 0.125f);
+        float shape = glsl::remapValue(a.x, low - 1.0f, 1.0f, 0.0f, 1.0f);
+        sum += double(shape);
+        sumSq += double(shape) * double(shape);
+        equalised.push_back(glsl::equalizeBaseShape(shape));
+    }
+    double mean = sum / n, sd = std::sqrt(sumSq / n - mean * mean);
+    EXPECT_NEAR(mean, double(glsl::BASE_SHAPE_MEAN), 0.003);
+    EXPECT_NEAR(sd, double(glsl::BASE_SHAPE_SD), 0.003);
+    // Equalised, the shape is close to uniform: coverage c leaves a fraction ~c (within 0.04).
+    for (float c : {0.1f, 0.3f, 0.5f, 0.7f, 0.9f})
+    {
+        double above = 0;
+        for (float e : equalised)
+            above += e > 1.0f - c ? 1.0 : 0.0;
+        EXPECT_NEAR(above / n, double(c), 0.04) << "coverage " << c;
+    }
 }
