@@ -30,7 +30,7 @@ HighCloudSample sampleHighCloud(vec3 dir, float mu, float hc, float R)
     if (hc < hHigh)
     {
         float tGround = rayGroundDistance(R + hc, mu, hc, R);
-        if (tGround > 0.0f && tGround < t)
+        if (tGround >= 0.0f && tGround < t)
             return s;
     }
     vec3 p = dir * t;

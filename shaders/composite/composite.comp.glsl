@@ -36,7 +36,7 @@ void main()
     float hc = frame.cameraForward.w;
 
     vec3 sky = sampleSkyView(skyViewLut, atmosphere, dir, rc);
-    bool groundHit = rayGroundDistance(rc, dir.z, hc, frame.earth.x) > 0.0f;
+    bool groundHit = rayGroundDistance(rc, dir.z, hc, frame.earth.x) >= 0.0f;
     if (!groundHit)
     {
         sky += sunDiskRadiance(transmittanceLut, atmosphere, dir, rc, frame.sunDirection.xyz, frame.sunIrradiance.rgb);

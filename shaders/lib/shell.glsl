@@ -28,12 +28,15 @@ bool raySphereRoots(float rc, float mu, float hc, float hs, float R, OUT(float) 
     return true;
 }
 
-// Distance along the ray to the ground sphere (h = 0), or -1 when the ray does not reach it.
+// Distance along the ray to the ground sphere (h = 0), or -1 when the ray does not reach it. An eye at or
+// below the ground looking down is already there (0): such rays must stop at once, not march the shell.
 float rayGroundDistance(float rc, float mu, float hc, float R)
 {
+    if (hc <= 0.0f)
+        return mu < 0.0f ? 0.0f : -1.0f;
     float tNear;
     float tFar;
-    if (hc <= 0.0f || !raySphereRoots(rc, mu, hc, 0.0f, R, tNear, tFar))
+    if (!raySphereRoots(rc, mu, hc, 0.0f, R, tNear, tFar))
         return -1.0f;
     return tNear > 0.0f ? tNear : -1.0f;
 }
@@ -58,7 +61,7 @@ bool rayShellInterval(float mu, float hc, float hMin, float hMax, float R, float
         // Below the shell: leave the inner sphere (upwards or along a long grazing path) then the outer.
         tEnter = innerFar;
         tExit = outerFar;
-        if (tGround > 0.0f && tGround < tEnter)
+        if (tGround >= 0.0f && tGround < tEnter)
             return false;
     }
     else if (hc <= hMax)

@@ -103,6 +103,18 @@ TEST(CloudMath, ShellIntervalCases)
     EXPECT_NEAR(b, std::sqrt(2.0 * 6.371e6 * 2000.0), 200.0);
 }
 
+// Regression: an eye at exactly 0 m made downward rays march the whole shell (rayGroundDistance
+// returned -1 for hc <= 0), ~100x slower per pixel.
+TEST(CloudMath, EyeOnTheGroundStopsDownwardRays)
+{
+    const float R = 6.371e6f;
+    EXPECT_EQ(glsl::rayGroundDistance(R, -0.3f, 0.0f, R), 0.0f);
+    EXPECT_LT(glsl::rayGroundDistance(R, 0.3f, 0.0f, R), 0.0f);
+    float a, b;
+    EXPECT_FALSE(glsl::rayShellInterval(-0.3f, 0.0f, 1000.0f, 3000.0f, R, 1e6f, a, b));
+    EXPECT_TRUE(glsl::rayShellInterval(0.3f, 0.0f, 1000.0f, 3000.0f, R, 1e6f, a, b));
+}
+
 TEST(CloudMath, HeightProfilesStayInUnitRangeAndVanishAtEnds)
 {
     for (int type = 0; type <= 10; ++type)
