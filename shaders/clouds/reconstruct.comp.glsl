@@ -127,14 +127,15 @@ void main()
         return;
     }
 
-    // Where was this pixel's cloud in the previous frame? Start from the previous frame's depth at this
-    // pixel, project, and refine once with the previous depth found there (a fixed-point step: exact
-    // for a still camera, and it follows a cloud edge that moved a few pixels). Zero depth (no cloud,
-    // or cirrus far away) reprojects the direction alone.
+    // Where was this pixel's cloud in the previous frame? Project the direction alone first (exact for
+    // anything far away), read the previous depth found there, and project again at that depth (one
+    // fixed-point step: follows the parallax of near clouds when the eye moves; exact for a still
+    // camera). Zero depth (no cloud) keeps the direction alone. Starting from the previous depth at
+    // this pixel instead measured 1-2 dB worse on a pan with 50-200 m of eye motion per frame.
     vec3 dir = viewRayDirection(vec2(pixel) + 0.5f);
     vec2 q = vec2(0.0f);
     vec3 v = dir;
-    float depthGuess = imageLoad(historyDepth, pixel).x;
+    float depthGuess = 0.0f;
     bool accept = true;
     float previousDepth = 0.0f;
     for (int pass = 0; pass < 2 && accept; ++pass)
