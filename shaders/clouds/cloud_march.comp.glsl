@@ -36,9 +36,14 @@ layout(binding = 9, r32f) uniform writeonly image2D depthOut;
 
 void main()
 {
-    ivec2 pixel = ivec2(permutedPixel(gl_GlobalInvocationID.xy));
+    // Reprojected frames (frame.reprojection.x = 4) march one pixel of each 4x4 block and store it at
+    // the block's texel of a block-resolution image; full-resolution frames march every pixel.
+    uint block = max(frame.reprojection.x, 1u);
+    uvec2 id = permutedId(gl_GlobalInvocationID.xy, (frame.image.y + block - 1u) / block);
+    ivec2 pixel = ivec2(id * block + uvec2(frame.reprojection.y, frame.reprojection.z));
     if (pixel.x >= int(frame.image.x) || pixel.y >= int(frame.image.y))
         return;
+    ivec2 texel = ivec2(id);
 
     vec3 dir = viewRayDirection(vec2(pixel) + 0.5f);
     float R = frame.earth.x;
@@ -75,6 +80,6 @@ void main()
     }
 
     float depth = depthWeight > 1e-4f ? depthWeighted / depthWeight : 0.0f;
-    imageStore(cloudOut, pixel, vec4(radiance, 1.0f - transmittance));
-    imageStore(depthOut, pixel, vec4(depth, 0.0f, 0.0f, 0.0f));
+    imageStore(cloudOut, texel, vec4(radiance, 1.0f - transmittance));
+    imageStore(depthOut, texel, vec4(depth, 0.0f, 0.0f, 0.0f));
 }

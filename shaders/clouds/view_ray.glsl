@@ -4,13 +4,16 @@
 // lavapipe hands each CPU thread a contiguous range of workgroups; with sky on top and ground below one
 // thread would get all the work. Interleaving rows of workgroups (0, n-1, 1, n-2, ...) balances it and
 // costs nothing on a GPU (shared/GPU.md, "Pitfalls").
-uvec2 permutedPixel(uvec2 globalId)
+// `rows` is the height of the dispatched grid.
+uvec2 permutedId(uvec2 globalId, uint rows)
 {
-    uint groupsY = (frame.image.y + gl_WorkGroupSize.y - 1u) / gl_WorkGroupSize.y;
+    uint groupsY = (rows + gl_WorkGroupSize.y - 1u) / gl_WorkGroupSize.y;
     uint gy = gl_WorkGroupID.y;
     uint py = (gy % 2u == 0u) ? gy / 2u : groupsY - 1u - gy / 2u;
     return uvec2(globalId.x, py * gl_WorkGroupSize.y + gl_LocalInvocationID.y);
 }
+
+uvec2 permutedPixel(uvec2 globalId) { return permutedId(globalId, frame.image.y); }
 
 // Unit view direction (ENU) through the centre of `pixelCentre` (pixels, y down).
 vec3 viewRayDirection(vec2 pixelCentre)

@@ -37,6 +37,15 @@ struct FrameParams
     vec4 exposure;       // x: display exposure multiplier; y: animation time (s); zw: sub-pixel jitter of the view rays (pixels)
     uvec4 image;         // x: width; y: height; z: frame index (decorrelates the march jitter); w: flags (FRAME_FLAG_*)
     uvec4 march;         // x: max view steps; y: light samples (cone); z: unused; w: unused
+    // Temporal reprojection (skyservice/render/reprojection.h). The previous camera is given in the
+    // current eye's ENU frame, computed in double on the CPU (DESIGN §4).
+    // reprojection x: block size (1: full resolution, 4: one pixel of each 4x4 block marched);
+    // yz: marched position in the block; w: 1 when the history images hold the previous frame
+    uvec4 reprojection;
+    vec4 previousRight;     // xyz: previous camera right axis; w: its tan(fovY/2) * width/height
+    vec4 previousUp;        // xyz: previous camera up axis; w: its tan(fovY/2)
+    vec4 previousForward;   // xyz: previous camera view axis; w: unused
+    vec4 previousEye;       // xyz: previous eye position relative to the current eye (m); w: unused
 };
 
 // frame flags

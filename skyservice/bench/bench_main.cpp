@@ -13,7 +13,11 @@
 // every frame on the CPU (~25 ms on the H100 machine): with one GPU frame per call the GPU idles most of
 // the time and its clock governor drops the SM clock as low as 345 MHz, which inflates GPU timestamps
 // by up to 5x. Back-to-back frames keep the clock up, as a real-time loop would. Exit codes: 0 ok, 1 runtime failure (Vulkan, files, validation
-// messages), 2 bad command line or a mode that does not exist yet.
+// messages), 2 bad command line.
+//
+// --mode reprojected times the temporal reprojection loop (skyservice/render/reprojection.h): each call
+// marches one pixel of every 4x4 block ("march") and rebuilds the full image from the previous call's
+// ("reconstruct"). The camera is still, as in full mode; setWeather drops the history per scene.
 #include "skyservice/bench/bench_report.h"
 #include "skyservice/output/contact_sheet.h"
 #include "skyservice/output/image_files.h"
@@ -166,12 +170,6 @@ void fillDevice(const Renderer& r, BenchRun& run)
 
 int runBench(const BenchOptions& o)
 {
-    if (o.mode == "reprojected")
-    {
-        std::fprintf(stderr, "sky-bench: --mode reprojected: not implemented yet (temporal reprojection, issue 5); "
-                             "use --mode full\n");
-        return kExitUsage;
-    }
     std::vector<BenchScene> scenes;
     std::string error;
     if (!selectBenchScenes(o.scene, scenes, error))
@@ -182,6 +180,11 @@ int runBench(const BenchOptions& o)
     QualitySettings quality;  // the shipped defaults, no readback while timed
     quality.accumulationFrames = o.gpuFrames;
     quality.readback = false;
+    // Reprojected: every call is one frame of the temporal loop (march 1/16, reconstruct, composite),
+    // reusing the previous call's image; --gpu-frames does not apply (a frame needs the one before).
+    quality.reprojected = o.mode == "reprojected";
+    if (quality.reprojected)
+        quality.accumulationFrames = 1;
     if (o.steps > 0)
         quality.maxViewSteps = o.steps;
 
@@ -261,7 +264,7 @@ int main(int argc, char** argv)
     app.add_option("--height", o.height, "Image height (pixels)")->check(CLI::Range(8, 8192));
     app.add_option("--frames", o.frames, "Timed frames per scene")->check(CLI::Range(1, 100000));
     app.add_option("--warmup", o.warmup, "Untimed frames per scene before timing")->check(CLI::Range(0, 100000));
-    app.add_option("--mode", o.mode, "full | reprojected (not implemented yet)")
+    app.add_option("--mode", o.mode, "full | reprojected (1/16 march + temporal reconstruction)")
         ->check(CLI::IsMember({"full", "reprojected"}));
     app.add_option("--json", o.json, "Write the results as JSON to this file");
     app.add_option("--sheet", o.sheet, "Write a contact sheet PNG of one frame per scene to this file");

@@ -44,6 +44,9 @@ struct QualitySettings
     uint32_t accumulationFrames = 1;     ///< frames averaged, each with new march jitter and sub-pixel offset
     uint32_t shadowSteps = 48;           ///< density samples per shadow-map texel along the light ray
     bool readback = true;                ///< copy the images to RenderResult; false leaves them empty (sky-bench)
+    /// Temporal reprojection (skyservice/render/reprojection.h): march one pixel of every 4x4 block and
+    /// reproject the rest from the renderer's previous reprojected frame. accumulationFrames is ignored.
+    bool reprojected = false;
 };
 
 /// One view to render.

@@ -24,7 +24,8 @@ enum TimestampSlot : uint32_t
 {
     kTsStart,
     kTsSkyView,
-    kTsClouds,
+    kTsClouds,  ///< after the march (full or 1/16)
+    kTsReconstruct,  ///< after the reconstruct pass (written right after kTsClouds in full mode)
     kTsComposite,
     kTsCount
 };
@@ -98,6 +99,44 @@ SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height)
     return endOneShot(r.ctx, shot);
 }
 
+// The reprojection images: block-resolution fresh pixels and the two full-resolution histories.
+SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height)
+{
+    uint32_t blocksX = (width + 3) / 4, blocksY = (height + 3) / 4;
+    if (r.freshCloudImage.image && r.freshCloudImage.extent.width == blocksX &&
+        r.freshCloudImage.extent.height == blocksY && r.historyCloud[0].extent.width == width &&
+        r.historyCloud[0].extent.height == height)
+        return SkyStatus::success();
+    VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize only: never in steady state
+    Image* all[] = {&r.freshCloudImage, &r.freshDepthImage, &r.historyCloud[0], &r.historyCloud[1],
+                    &r.historyDepth[0], &r.historyDepth[1]};
+    for (Image* img : all)
+        destroyImage(r.ctx, r.memory, *img);
+    r.reprojection.valid = false;
+    ImageDesc d;
+    d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+    d.width = blocksX;
+    d.height = blocksY;
+    d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    SKY_TRY(createImage(r.ctx, r.memory, r.freshCloudImage, d, "fresh cloud radiance (1/16)"));
+    d.format = VK_FORMAT_R32_SFLOAT;
+    SKY_TRY(createImage(r.ctx, r.memory, r.freshDepthImage, d, "fresh cloud depth (1/16)"));
+    d.width = width;
+    d.height = height;
+    for (int k = 0; k < 2; ++k)
+    {
+        d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+        SKY_TRY(createImage(r.ctx, r.memory, r.historyCloud[k], d, "cloud radiance history"));
+        d.format = VK_FORMAT_R32_SFLOAT;
+        SKY_TRY(createImage(r.ctx, r.memory, r.historyDepth[k], d, "cloud depth history"));
+    }
+    OneShot shot;
+    SKY_TRY(beginOneShot(r.ctx, shot));
+    for (Image* img : all)
+        transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    return endOneShot(r.ctx, shot);
+}
+
 SkyStatus checkRequest(const ViewRequest& req)
 {
     std::string error;
@@ -143,6 +182,7 @@ std::vector<uint16_t> average(const std::vector<double>& sum, uint32_t frames)
 SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame& camera, const SunMoon& sunMoon,
                      const FrameInputs& in, RenderResult& result)
 {
+    const bool reprojected = in.quality->reprojected;
     OneShot shot;
     SKY_TRY(beginOneShot(r.ctx, shot));
     VkCommandBuffer cmd = shot.cmd;
@@ -151,14 +191,30 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
     recordAtmosphere(r, cmd, camera, sunMoon, in);
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsSkyView);
-    dispatch(r.ctx, cmd, r.cloudProgram, request.width, request.height, 1, nullptr, 0,
+    // Reprojected: one invocation per 4x4 block into the block-resolution fresh images.
+    uint32_t marchX = reprojected ? (request.width + 3) / 4 : request.width;
+    uint32_t marchY = reprojected ? (request.height + 3) / 4 : request.height;
+    const Image& marchCloud = reprojected ? r.freshCloudImage : r.cloudImage;
+    const Image& marchDepth = reprojected ? r.freshDepthImage : r.depthImage;
+    dispatch(r.ctx, cmd, r.cloudProgram, marchX, marchY, 1, nullptr, 0,
              {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.atmosphereUniforms),
               DescriptorInfo(r.weatherWindowImage, r.linearClamp), DescriptorInfo(r.baseNoise, r.linearRepeat),
               DescriptorInfo(r.detailNoise, r.linearRepeat), DescriptorInfo(r.curlNoise, r.linearRepeat),
               DescriptorInfo(r.blueNoise, r.nearestRepeat), DescriptorInfo(r.transmittanceLut, r.linearClamp),
-              DescriptorInfo(r.cloudImage), DescriptorInfo(r.depthImage)});
+              DescriptorInfo(marchCloud), DescriptorInfo(marchDepth)});
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsClouds);
+    if (reprojected)
+    {
+        uint32_t prev = r.reprojection.current, next = prev ^ 1u;
+        dispatch(r.ctx, cmd, r.reconstructProgram, request.width, request.height, 1, nullptr, 0,
+                 {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.freshCloudImage), DescriptorInfo(r.freshDepthImage),
+                  DescriptorInfo(r.historyCloud[prev]), DescriptorInfo(r.historyDepth[prev]),
+                  DescriptorInfo(r.cloudImage), DescriptorInfo(r.depthImage), DescriptorInfo(r.historyCloud[next]),
+                  DescriptorInfo(r.historyDepth[next])});
+        computeBarrier(cmd);
+    }
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsReconstruct);
     recordComposite(r, cmd, request);
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsComposite);
@@ -171,8 +227,14 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
     {
         auto ms = [&](uint32_t a, uint32_t b) { return double(ts[b] - ts[a]) * r.ctx.timestampPeriodNs * 1e-6; };
         result.gpuMs["sky"] = ms(kTsStart, kTsSkyView);
-        result.gpuMs["clouds"] = ms(kTsSkyView, kTsClouds);
-        result.gpuMs["composite"] = ms(kTsClouds, kTsComposite);
+        if (reprojected)
+        {
+            result.gpuMs["march"] = ms(kTsSkyView, kTsClouds);
+            result.gpuMs["reconstruct"] = ms(kTsClouds, kTsReconstruct);
+        }
+        else
+            result.gpuMs["clouds"] = ms(kTsSkyView, kTsClouds);
+        result.gpuMs["composite"] = ms(kTsReconstruct, kTsComposite);
         result.gpuMs["total"] = ms(kTsStart, kTsComposite);
     }
     if (!in.quality->readback)
@@ -209,6 +271,7 @@ SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
         {&r.curlNoiseProgram, "curl_noise"},     {&r.transmittanceProgram, "transmittance_lut"},
         {&r.multiscatterProgram, "multiscatter_lut"}, {&r.skyViewProgram, "sky_view_lut"},
         {&r.cloudProgram, "cloud_march"},        {&r.compositeProgram, "composite"},
+        {&r.reconstructProgram, "reconstruct"},
     };
     for (const auto& [program, name] : programs)
         SKY_TRY(createProgram(r.ctx, *program, name));
@@ -254,13 +317,15 @@ void destroyRenderer(Renderer& r)
     vkDeviceWaitIdle(r.ctx.device);  // shutdown only
     for (Image* img : {&r.baseNoise, &r.detailNoise, &r.curlNoise, &r.blueNoise, &r.transmittanceLut,
                        &r.multiscatterLut, &r.skyViewLut, &r.weatherWindowImage, &r.cloudImage, &r.depthImage,
-                       &r.linearImage, &r.displayImage})
+                       &r.linearImage, &r.displayImage, &r.freshCloudImage, &r.freshDepthImage, &r.historyCloud[0],
+                       &r.historyCloud[1], &r.historyDepth[0], &r.historyDepth[1]})
         destroyImage(r.ctx, r.memory, *img);
     destroyShadowMapPass(r.ctx, r.memory, r.shadowPass);
     destroyBuffer(r.ctx, r.memory, r.frameUniforms);
     destroyBuffer(r.ctx, r.memory, r.atmosphereUniforms);
     for (Program* p : {&r.baseNoiseProgram, &r.detailNoiseProgram, &r.curlNoiseProgram, &r.transmittanceProgram,
-                       &r.multiscatterProgram, &r.skyViewProgram, &r.cloudProgram, &r.compositeProgram})
+                       &r.multiscatterProgram, &r.skyViewProgram, &r.cloudProgram, &r.compositeProgram,
+                       &r.reconstructProgram})
         destroyProgram(r.ctx, *p);
     for (VkSampler* s : {&r.linearRepeat, &r.linearClamp, &r.nearestRepeat})
         if (*s)
@@ -271,7 +336,15 @@ void destroyRenderer(Renderer& r)
     destroyContext(r.ctx);
 }
 
-void setWeather(Renderer& r, const WeatherSnapshot& snapshot) { r.weather = snapshot; }
+void setWeather(Renderer& r, const WeatherSnapshot& snapshot)
+{
+    r.weather = snapshot;
+    dropHistory(r);  // the previous frame shows other clouds
+}
+
+void dropHistory(Renderer& r) { r.reprojection.valid = false; }
+
+const std::string& lastHistoryDropReason(const Renderer& r) { return r.reprojection.lastDropReason; }
 
 SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySettings& quality, RenderResult& result)
 {
@@ -290,6 +363,8 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     SKY_TRY(uploadImage(r.ctx, r.memory, r.weatherWindowImage, r.window.texels.data(),
                         r.window.texels.size() * sizeof(glm::vec4), VK_IMAGE_LAYOUT_GENERAL));
     SKY_TRY(ensureOutputImages(r, request.width, request.height));
+    if (quality.reprojected)
+        SKY_TRY(ensureReprojectionImages(r, request.width, request.height));
 
     FrameInputs in;
     in.camera = &camera;
@@ -309,11 +384,21 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     in.groundAlbedo = light.groundAlbedo;
     in.exposure = 1.0;
     FrameParams params = makeFrameParams(in);
+    bool useHistory = false;
+    if (quality.reprojected)
+    {
+        std::string why;
+        useHistory = historyUsable(r.reprojection, request, camera, why);
+        r.reprojection.lastDropReason = useHistory ? "" : why;
+        fillReprojectionParams(params, r.reprojection, request, camera, useHistory);
+    }
     result.cpuSetupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
 
     // Accumulation: each frame has new march jitter (frame index) and a sub-pixel offset (Halton 2,3);
     // the frames are averaged on the host. One frame is the plain render.
-    uint32_t frames = std::max(1u, quality.accumulationFrames);
+    // Reprojected frames keep the march jitter of frame 0 (image.z): a pixel marched again gives the same
+    // value, so a still view converges to exactly the full-resolution image.
+    uint32_t frames = quality.reprojected ? 1u : std::max(1u, quality.accumulationFrames);
     result.gpuMs.clear();
     result.width = request.width;
     result.height = request.height;
@@ -359,6 +444,16 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
         result.cloudDepthM.resize(depthSum.size());
         for (size_t i = 0; i < depthSum.size(); ++i)
             result.cloudDepthM[i] = depthWeight[i] > 1e-6 ? float(depthSum[i] / depthWeight[i]) : 0.0f;
+    }
+
+    if (quality.reprojected)
+    {
+        ReprojectionHistory& h = r.reprojection;
+        h.valid = true;
+        h.current ^= 1u;
+        h.frameIndex++;
+        h.lastView = request;
+        h.lastCamera = camera;
     }
 
     result.sunAzimuthDeg = sunMoon.sun.azimuthDeg;

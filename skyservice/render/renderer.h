@@ -5,12 +5,14 @@
 //   Renderer r;  createRenderer(r, options)  -> noise and atmosphere tables are built once
 //   setWeather(r, snapshot)                  -> the weather to draw (copied)
 //   renderView(r, request, settings, result) -> pixels back on the host
+//   (settings.reprojected: consecutive calls reuse the previous frame; dropHistory(r) forgets it)
 //   destroyRenderer(r)
 // Every function that can fail at run time returns a SkyStatus naming what failed.
 #pragma once
 
 #include "skyservice/earth/weather_window.h"
 #include "skyservice/render/render_types.h"
+#include "skyservice/render/reprojection.h"
 #include "skyservice/render/shadow_map.h"
 #include "skyservice/render/window_analysis.h"
 #include "skyservice/sky/atmosphere_reference.h"
@@ -33,12 +35,17 @@ struct Renderer
 
     Program baseNoiseProgram, detailNoiseProgram, curlNoiseProgram;
     Program transmittanceProgram, multiscatterProgram, skyViewProgram;
-    Program cloudProgram, compositeProgram;
+    Program cloudProgram, compositeProgram, reconstructProgram;
 
     Image baseNoise, detailNoise, curlNoise, blueNoise;
     Image transmittanceLut, multiscatterLut, skyViewLut;
     Image weatherWindowImage;
     Image cloudImage, depthImage, linearImage, displayImage;
+    // Reprojection (created on the first reprojected frame): the marched pixels at block resolution,
+    // and the reconstructed cloud image and depth of the last two frames (ping-pong).
+    Image freshCloudImage, freshDepthImage;
+    Image historyCloud[2], historyDepth[2];
+    ReprojectionHistory reprojection;
     Buffer frameUniforms, atmosphereUniforms;
     VkSampler linearRepeat = VK_NULL_HANDLE, linearClamp = VK_NULL_HANDLE, nearestRepeat = VK_NULL_HANDLE;
     VkQueryPool timestamps = VK_NULL_HANDLE;
@@ -59,7 +66,16 @@ void destroyRenderer(Renderer& r);
 /// Replaces the weather (copied). Takes effect at the next renderView.
 void setWeather(Renderer& r, const WeatherSnapshot& snapshot);
 
-/// Renders one view and reads the images back.
+/// Forgets the reprojection history: the next reprojected frame uses fresh pixels only (teleport,
+/// weather swap, time jump). setWeather does this too; large moves, turns and time jumps do it
+/// automatically (limits in reprojection.h).
+void dropHistory(Renderer& r);
+
+/// Renders one view and reads the images back. With quality.reprojected the cloud image is
+/// reconstructed from this frame's 1/16 of marched pixels and the previous reprojected frame; full
+/// renders in between do not disturb that history.
 SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySettings& quality, RenderResult& result);
+/// Why the last reprojected frame did not use history ("" when it did).
+const std::string& lastHistoryDropReason(const Renderer& r);
 
 }  // namespace sky

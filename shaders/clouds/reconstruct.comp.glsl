@@ -1,0 +1,176 @@
+// SPDX-License-Identifier: MIT
+// Temporal reconstruction of the cloud image (DESIGN §3 "Temporal reprojection", issue 5).
+//
+// The march marched one pixel of every 4x4 block this frame (position frame.reprojection.yz in the
+// block) into a block-resolution image. Every full-resolution pixel here is either that fresh pixel,
+// taken as is, or the previous frame's cloud image reprojected: the pixel's ray is followed to the
+// cloud depth of its nearest fresh pixel (or to infinity where that ray saw no cloud), the point is
+// projected into the previous camera (axes and eye given relative to the current eye, computed in
+// double on the CPU), and the previous image is read there. History is rejected when that lands off
+// screen, when the previous depth there disagrees with the expected one (disocclusion), or when it
+// lies outside the range of the fresh 3x3 neighbourhood (colour clamp); a rejected pixel takes its
+// nearest fresh pixel's value. The result goes to the images the composite reads and to the history.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "shaders/shared/frame_params.h"
+
+layout(local_size_x = WORKGROUP_SIZE_2D, local_size_y = WORKGROUP_SIZE_2D) in;
+
+layout(binding = 0, std140) uniform FrameBlock { FrameParams frame; };
+layout(binding = 1, rgba16f) uniform readonly image2D freshCloud;   // block resolution
+layout(binding = 2, r32f) uniform readonly image2D freshDepth;      // block resolution
+layout(binding = 3, rgba16f) uniform readonly image2D historyCloud; // previous frame, full resolution
+layout(binding = 4, r32f) uniform readonly image2D historyDepth;
+layout(binding = 5, rgba16f) uniform writeonly image2D cloudOut;
+layout(binding = 6, r32f) uniform writeonly image2D depthOut;
+layout(binding = 7, rgba16f) uniform writeonly image2D historyCloudOut;
+layout(binding = 8, r32f) uniform writeonly image2D historyDepthOut;
+
+#include "shaders/clouds/view_ray.glsl"
+
+// Relative tolerance on the previous depth before a pixel counts as disoccluded (our choice: the
+// transmittance-weighted depth of a cumulus moves by less than 10% between neighbouring rays), and
+// the absolute floor of that tolerance (m).
+const float kDepthTolerance = 0.1f;
+const float kDepthToleranceFloorM = 100.0f;
+// The colour box of the fresh neighbourhood is widened by this share of its size on each side plus an
+// absolute margin (pre-exposed radiance is ~1 by day): fresh pixels are 4 pixels apart, so detail
+// between them is often outside their range and still right. Measured on the 2-degree pan of
+// tests/gpu/test_reprojection.cpp: a box not widened loses ~1.5 dB against full-resolution renders,
+// widened by its size ~0.1 dB, while gross misses (a cloud reprojected onto clear sky) stay rejected.
+const float kClampWiden = 1.0f;
+const float kClampMargin = 0.02f;
+
+// History within this many pixels of where it was counts as still (not colour-clamped).
+const float kStillPx = 0.01f;
+
+// Bilinear read of the previous cloud image at pixel coordinates `q` (premultiplied colour and alpha
+// interpolate correctly); a nearest read would shift every reprojected pixel by up to half a pixel.
+vec4 bilinearHistory(vec2 q)
+{
+    vec2 t = q - 0.5f;
+    ivec2 i0 = ivec2(floor(t));
+    vec2 f = t - vec2(i0);
+    ivec2 top = ivec2(frame.image.xy) - 1;
+    vec4 c00 = imageLoad(historyCloud, clamp(i0, ivec2(0), top));
+    vec4 c10 = imageLoad(historyCloud, clamp(i0 + ivec2(1, 0), ivec2(0), top));
+    vec4 c01 = imageLoad(historyCloud, clamp(i0 + ivec2(0, 1), ivec2(0), top));
+    vec4 c11 = imageLoad(historyCloud, clamp(i0 + ivec2(1, 1), ivec2(0), top));
+    return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+}
+
+void writeAll(ivec2 pixel, vec4 cloud, float depth)
+{
+    imageStore(cloudOut, pixel, cloud);
+    imageStore(depthOut, pixel, vec4(depth, 0.0f, 0.0f, 0.0f));
+    imageStore(historyCloudOut, pixel, cloud);
+    imageStore(historyDepthOut, pixel, vec4(depth, 0.0f, 0.0f, 0.0f));
+}
+
+// Projects `v` (from the previous eye, current ENU axes) into the previous image: pixel coordinates
+// in `q`, false when behind the previous camera or off its screen.
+bool projectPrevious(vec3 v, out vec2 q)
+{
+    q = vec2(-1.0f);
+    float z = dot(v, frame.previousForward.xyz);
+    if (z <= 0.0f)
+        return false;
+    vec2 ndc = vec2(dot(v, frame.previousRight.xyz) / (z * frame.previousRight.w),
+                    -dot(v, frame.previousUp.xyz) / (z * frame.previousUp.w));
+    q = (ndc + 1.0f) * 0.5f * vec2(frame.image.xy);
+    return q.x >= 0.0f && q.y >= 0.0f && q.x < float(frame.image.x) && q.y < float(frame.image.y);
+}
+
+void main()
+{
+    ivec2 pixel = ivec2(permutedPixel(gl_GlobalInvocationID.xy));
+    if (pixel.x >= int(frame.image.x) || pixel.y >= int(frame.image.y))
+        return;
+    const int B = 4;
+    ivec2 phase = ivec2(int(frame.reprojection.y), int(frame.reprojection.z));
+    ivec2 block = pixel / B;
+    if (pixel == block * B + phase)
+    {
+        writeAll(pixel, imageLoad(freshCloud, block), imageLoad(freshDepth, block).x);
+        return;
+    }
+
+    // The fresh 3x3 neighbourhood: its colour range and the fresh pixel nearest to this one.
+    vec4 lo = vec4(1e30f);
+    vec4 hi = vec4(-1e30f);
+    vec4 nearest = vec4(0.0f);
+    float nearestDepth = 0.0f;
+    int nearestD2 = 1 << 30;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+        {
+            ivec2 b = block + ivec2(dx, dy);
+            ivec2 p = b * B + phase;
+            if (b.x < 0 || b.y < 0 || p.x >= int(frame.image.x) || p.y >= int(frame.image.y))
+                continue;
+            vec4 c = imageLoad(freshCloud, b);
+            lo = min(lo, c);
+            hi = max(hi, c);
+            ivec2 d = p - pixel;
+            int d2 = d.x * d.x + d.y * d.y;
+            if (d2 < nearestD2)
+            {
+                nearestD2 = d2;
+                nearest = c;
+                nearestDepth = imageLoad(freshDepth, b).x;
+            }
+        }
+    if (frame.reprojection.w == 0u)
+    {
+        writeAll(pixel, nearest, nearestDepth);
+        return;
+    }
+
+    // Where was this pixel's cloud in the previous frame? Project the direction alone first (exact for
+    // anything far away), read the previous depth found there, and project again at that depth (one
+    // fixed-point step: follows the parallax of near clouds when the eye moves; exact for a still
+    // camera). Zero depth (no cloud) keeps the direction alone. Starting from the previous depth at
+    // this pixel instead measured 1-2 dB worse on a pan with 50-200 m of eye motion per frame.
+    vec3 dir = viewRayDirection(vec2(pixel) + 0.5f);
+    vec2 q = vec2(0.0f);
+    vec3 v = dir;
+    float depthGuess = 0.0f;
+    bool accept = true;
+    float previousDepth = 0.0f;
+    for (int pass = 0; pass < 2 && accept; ++pass)
+    {
+        v = depthGuess > 0.0f ? dir * depthGuess - frame.previousEye.xyz : dir;
+        accept = projectPrevious(v, q);
+        if (!accept)
+            break;
+        previousDepth = imageLoad(historyDepth, ivec2(q)).x;
+        // The previous depth is measured from the previous eye: the distance from this eye.
+        depthGuess = previousDepth > 0.0f ? length(frame.previousEye.xyz + normalize(v) * previousDepth) : 0.0f;
+    }
+    vec4 previous = vec4(0.0f);
+    if (accept)
+    {
+        // A pixel that lands where it was (a still view) keeps its history whatever its neighbours say:
+        // it was marched at this very place, and the 16-frame refresh brings in what changed since.
+        bool still = distance(q, vec2(pixel) + 0.5f) < kStillPx;
+        previous = still ? imageLoad(historyCloud, pixel) : bilinearHistory(q);
+        // Disocclusion: the fixed point did not settle: the refined depth, seen from the previous eye,
+        // disagrees with the previous depth found there (the ray crossed a cloud edge of another distance).
+        if (previousDepth > 0.0f && depthGuess > 0.0f)
+        {
+            float expected = length(dir * depthGuess - frame.previousEye.xyz);
+            accept = abs(previousDepth - expected) <= kDepthTolerance * expected + kDepthToleranceFloorM;
+        }
+        // Colour clamp against the fresh neighbourhood.
+        vec4 margin = kClampWiden * (hi - lo) + kClampMargin;
+        bool inBox = all(greaterThanEqual(previous, lo - margin)) && all(lessThanEqual(previous, hi + margin));
+        accept = accept && (still || inBox);
+    }
+    if (!accept)
+    {
+        writeAll(pixel, nearest, nearestDepth);
+        return;
+    }
+    writeAll(pixel, previous, depthGuess);
+}
