@@ -103,7 +103,7 @@ FrameParams makeFrameParams(const FrameInputs& in)
     for (int k = 0; k <= MAX_CLOUD_LAYERS; ++k)
     {
         glm::dvec2 wind = k < MAX_CLOUD_LAYERS ? sum.layers[size_t(k)].meanWindEnuMS : sum.upperWindEnuMS;
-        glm::dvec3 driftEcef = m * glm::dvec3(wind * in.animationTimeS, 0.0);
+        glm::dvec3 driftEcef = in.driftEnuToEcef * glm::dvec3(wind * in.animationTimeS, 0.0);
         glm::dvec3 o = cam.eyeEcefM - driftEcef;
         f.layerNoiseOffsetM[k] = vec4(float(positiveFmod(o.x, modulus)), float(positiveFmod(o.y, modulus)),
                                       float(positiveFmod(o.z, modulus)), 0.0f);

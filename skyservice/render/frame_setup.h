@@ -20,6 +20,9 @@ struct FrameInputs
     const ViewRequest* request = nullptr;
     const QualitySettings* quality = nullptr;
     double animationTimeS = 0;      ///< seconds since the weather's valid time (drives wind drift)
+    /// ENU -> ECEF rotation at a point fixed with the weather (the centre of its grid): the wind drift is
+    /// turned into earth-fixed axes there, not at the eye, so clouds do not slide as the eye moves.
+    glm::dmat3 driftEnuToEcef{1.0};
     glm::dvec3 sunIrradiance{1.0};  ///< top-of-atmosphere solar irradiance (renderer units)
     glm::dvec3 ambientSkyRadiance{0.0};   ///< mean sky radiance above the cloud layers
     glm::dvec3 groundIrradiance{0.0};     ///< irradiance reaching the ground

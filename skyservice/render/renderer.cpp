@@ -374,6 +374,15 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     in.request = &request;
     in.quality = &quality;
     in.animationTimeS = double(request.unixTimeS - r.weather.validTimeUnixS);
+    {
+        // The drift frame is anchored at the weather grid's centre: the same on every machine and for
+        // every eye position (multi-channel seams, no sliding when flying).
+        const LatLonGrid& g = r.weather.grid;
+        EyePose anchor;
+        anchor.latDeg = std::clamp(g.lat0Deg + 0.5 * g.dLatDeg * double(g.nLat > 0 ? g.nLat - 1 : 0), -90.0, 90.0);
+        anchor.lonDeg = g.lon0Deg + 0.5 * g.dLonDeg * double(g.nLon > 0 ? g.nLon - 1 : 0);
+        in.driftEnuToEcef = computeCameraFrame(anchor).enuToEcef;
+    }
     LightingEstimate light = estimateLighting(r, camera, sunMoon, r.windowSummary);
     // Pre-exposure: every light source is scaled by the exposure before it reaches the GPU, so that the
     // half-float images hold values near 1 by day and by moonlight alike (a full-moon sky is ~1e-7
