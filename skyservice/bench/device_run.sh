@@ -66,6 +66,23 @@ base() {  # W H
   timeout 120 $PROBE --spv $G/baseline/cloud.comp.spv --width $1 --height $2 --frames 100 --out /tmp/base-$1x$2 \
     2>&1 | tee -a "$OUT/baseline.txt" | grep -i "using device\|driver\|FULL\|1/16\|timestamp"
 }
+if [ "${SKY_BENCH_MODE:-full}" = reprojected ]; then
+  # Temporal reprojection: one GPU frame per call (a frame needs the one before), so the GPU may clock
+  # down during the CPU setup between frames: read the clock log next to the figures.
+  bench() {
+    el "sky-bench reprojected $1x$2"
+    timeout $4 $BENCH --scene all --width $1 --height $2 --frames $3 --warmup 20 --mode reprojected \
+      --device NVIDIA --json "$OUT/$5"
+    el "sky-bench $1x$2 rc=$?"
+  }
+  bench 1920 1080 100 200 bench-reprojected-1920x1080.json
+  base 1920 1080
+  bench 3840 2160 50 200 bench-reprojected-3840x2160.json
+  base 3840 2160
+  kill $CLK
+  el "done"
+  exit 0
+fi
 bench 1920 1080 100 180 bench-1920x1080.json ""
 base 1920 1080
 bench 640 360 100 150 bench-640x360.json ""
