@@ -339,6 +339,7 @@ void destroyRenderer(Renderer& r)
 void setWeather(Renderer& r, const WeatherSnapshot& snapshot)
 {
     r.weather = snapshot;
+    ++r.weatherVersion;
     dropHistory(r);  // the previous frame shows other clouds
 }
 
@@ -356,12 +357,19 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
 
     CameraFrame camera = computeCameraFrame(request.pose);
     SunMoon sunMoon = computeSunMoon(request.unixTimeS, camera.eye.latDeg, camera.eye.lonDeg, camera.eye.altitudeM);
-    resampleWeatherWindow(r.weather, camera.eye.latDeg, camera.eye.lonDeg, quality.windowHalfExtentM, r.window,
-                          WEATHER_WINDOW_SIZE, quality.windowWarpRadiusM);
-    computeAnvils(r.window);
-    r.windowSummary = summarizeWindow(r.window);
-    SKY_TRY(uploadImage(r.ctx, r.memory, r.weatherWindowImage, r.window.texels.data(),
-                        r.window.texels.size() * sizeof(glm::vec4), VK_IMAGE_LAYOUT_GENERAL));
+    Renderer::WindowKey key{r.weatherVersion, camera.eye.latDeg, camera.eye.lonDeg, quality.windowHalfExtentM,
+                            quality.windowWarpRadiusM, true};
+    if (!(key == r.windowKey))
+    {
+        r.windowKey.valid = false;  // stays invalid if the upload fails
+        resampleWeatherWindow(r.weather, camera.eye.latDeg, camera.eye.lonDeg, quality.windowHalfExtentM, r.window,
+                              WEATHER_WINDOW_SIZE, quality.windowWarpRadiusM);
+        computeAnvils(r.window);
+        r.windowSummary = summarizeWindow(r.window);
+        SKY_TRY(uploadImage(r.ctx, r.memory, r.weatherWindowImage, r.window.texels.data(),
+                            r.window.texels.size() * sizeof(glm::vec4), VK_IMAGE_LAYOUT_GENERAL));
+        r.windowKey = key;
+    }
     SKY_TRY(ensureOutputImages(r, request.width, request.height));
     if (quality.reprojected)
         SKY_TRY(ensureReprojectionImages(r, request.width, request.height));

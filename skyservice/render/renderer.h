@@ -54,6 +54,16 @@ struct Renderer
     WeatherSnapshot weather;
     WeatherWindow window;
     WindowSummary windowSummary;
+    uint64_t weatherVersion = 0;  ///< incremented by setWeather: invalidates the cached window
+    /// What the window on the GPU was resampled for: a frame with the same weather, eye lat/lon and
+    /// window settings (a still camera, a turning one) reuses it instead of resampling and uploading.
+    struct WindowKey
+    {
+        uint64_t weatherVersion = 0;
+        double latDeg = 0, lonDeg = 0, halfExtentM = 0, warpRadiusM = 0;
+        bool valid = false;
+        bool operator==(const WindowKey&) const = default;
+    } windowKey;
     double atmosphereRadiusM = 0;  ///< bottom radius the transmittance/multiscatter LUTs were built for
     double noiseStartupMs = 0;     ///< GPU time to generate the noise textures
     AtmosphereReference cpuAtmosphere;   ///< CPU copy of the atmosphere LUTs, for the lighting estimate

@@ -169,3 +169,18 @@ TEST_F(GpuRender, BaseNoiseMatchesCpuCompiledShaderMath)
             EXPECT_NEAR(float(texels[i + size_t(c)]) / 255.0f, cpu[c], 1.5f / 255.0f) << "texel " << k << " ch " << c;
     }
 }
+
+// The weather window is cached while the eye stands still: a new weather at the same eye must still be
+// drawn (the cache is keyed on setWeather), and the same weather again gives the same bytes.
+TEST_F(GpuRender, NewWeatherAtTheSameEyeIsDrawn)
+{
+    ViewRequest v = lookUp(45.0, 7.0, 200.0, 40.0, "2026-06-21T12:00:00Z");
+    v.width = 96;
+    v.height = 54;
+    RenderResult clear1 = render(clearSky(), v);
+    RenderResult overcast = render(uniformLayer(1.0f, CloudType::Stratus, 1000.0f, 1800.0f), v);
+    RenderResult clear2 = render(clearSky(), v);
+    EXPECT_EQ(cloudStats(clear1).cloudPixels, 0u);
+    EXPECT_GT(cloudStats(overcast).cloudPixels, 0.9 * 96 * 54);
+    EXPECT_EQ(clear1.displayRgba8, clear2.displayRgba8);
+}
