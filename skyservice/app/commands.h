@@ -16,6 +16,8 @@ class App;
 namespace sky
 {
 
+struct Renderer;
+
 enum ExitCode : int
 {
     kExitOk = 0,
@@ -60,6 +62,10 @@ void addCommonOptions(CLI::App& app, CommonRenderOptions& o);
 void addShadowMapOptions(CLI::App& app, ViewRequest& request);
 /// Fills `q` from the preset name; returns false (and a message) for an unknown preset.
 bool qualityFromOptions(const CommonRenderOptions& o, QualitySettings& q, std::string& error);
+
+/// Creates `renderer` on the device the options name; on failure prints "skyservice <command>: why",
+/// leaves nothing allocated and returns false.
+bool startRenderer(const CommonRenderOptions& o, Renderer& renderer, const char* command);
 
 int runRenderCommand(const RenderCommandOptions& options);
 int runShowcaseCommand(const ShowcaseOptions& options);

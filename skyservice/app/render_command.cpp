@@ -68,6 +68,20 @@ bool qualityFromOptions(const CommonRenderOptions& o, QualitySettings& q, std::s
     return true;
 }
 
+bool startRenderer(const CommonRenderOptions& o, Renderer& renderer, const char* command)
+{
+    RendererOptions ro;
+    ro.context.deviceSelector = o.device;
+    ro.context.validation = o.validate;
+    ro.noiseSeed = o.seed;
+    SkyStatus status = createRenderer(renderer, ro);
+    if (status.ok())
+        return true;
+    std::fprintf(stderr, "skyservice %s: %s\n", command, status.message.c_str());
+    destroyRenderer(renderer);
+    return false;
+}
+
 int runRenderCommand(const RenderCommandOptions& options)
 {
     ViewRequest request = options.request;
@@ -101,20 +115,11 @@ int runRenderCommand(const RenderCommandOptions& options)
     }
 
     Renderer renderer;
-    RendererOptions ro;
-    ro.context.deviceSelector = options.common.device;
-    ro.context.validation = options.common.validate;
-    ro.noiseSeed = options.common.seed;
-    SkyStatus status = createRenderer(renderer, ro);
-    if (!status.ok())
-    {
-        std::fprintf(stderr, "skyservice render: %s\n", status.message.c_str());
-        destroyRenderer(renderer);
+    if (!startRenderer(options.common, renderer, "render"))
         return kExitRuntime;
-    }
     setWeather(renderer, weather);
     RenderResult result;
-    status = renderView(renderer, request, quality, result);
+    SkyStatus status = renderView(renderer, request, quality, result);
     int code = kExitOk;
     if (!status.ok())
     {

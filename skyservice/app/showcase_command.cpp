@@ -264,17 +264,9 @@ int runShowcaseCommand(const ShowcaseOptions& options)
 #endif
 
     Renderer renderer;
-    RendererOptions ro;
-    ro.context.deviceSelector = options.common.device;
-    ro.context.validation = options.common.validate;
-    ro.noiseSeed = options.common.seed;
-    SkyStatus status = createRenderer(renderer, ro);
-    if (!status.ok())
-    {
-        std::fprintf(stderr, "skyservice showcase: %s\n", status.message.c_str());
-        destroyRenderer(renderer);
+    if (!startRenderer(options.common, renderer, "showcase"))
         return kExitRuntime;
-    }
+    SkyStatus status;
 
     std::vector<ImageRgba8> tiles;
     std::vector<std::string> captions;
