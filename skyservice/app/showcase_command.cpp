@@ -39,6 +39,7 @@ struct ShowcaseView
     int64_t unixTimeS = 0;
     const WeatherSnapshot* weather = nullptr; ///< nullptr: the built-in weather at the view's time
     std::string weatherSource = "builtin";
+    uint32_t shadowMapSize = 0;              ///< > 0: also write the cloud shadow map (texels per side)
 };
 
 // Metres -> degrees of longitude at a latitude, for placing eyes relative to the built-in clouds.
@@ -48,9 +49,10 @@ double lonOffsetDeg(double metres, double latDeg)
 }
 
 ShowcaseView builtinView(const char* name, const char* caption, const EyePose& pose, double fovYDeg,
-                         const char* timeIso)
+                         const char* timeIso, uint32_t shadowMapSize = 0)
 {
     ShowcaseView v;
+    v.shadowMapSize = shadowMapSize;
     v.name = name;
     v.caption = caption;
     v.tileCaption = caption;
@@ -70,7 +72,7 @@ std::vector<ShowcaseView> builtinViews()
                     "2026-06-21T11:30:00Z"),
         builtinView("cumulonimbus-40km", "Cumulonimbus and anvil from 40 km",
                     {cbLat, cbLon - lonOffsetDeg(40000.0, cbLat), 4500.0, 90.0, 6.0, 0.0}, 60.0,
-                    "2026-06-21T15:00:00Z"),
+                    "2026-06-21T15:00:00Z", 512),
         builtinView("deck-sunset", "Sunset over the stratocumulus deck",
                     {kBuiltinDeckLatDeg, kBuiltinDeckLonDeg + 0.6, 2600.0, 300.0, 1.0, 0.0}, 60.0,
                     "2026-06-21T19:15:00Z"),
@@ -279,13 +281,10 @@ int runShowcaseCommand(const ShowcaseOptions& options)
         request.width = options.width;
         request.height = options.height;
         request.unixTimeS = view.unixTimeS;
-        // The cumulonimbus view also writes the geo-referenced cloud shadow map (DESIGN §3).
-        if (view.name == "cumulonimbus-40km")
-        {
-            request.shadowMap = true;
-            request.shadowMapSize = 512;
-            request.shadowMapExtentM = 150000.0;
-        }
+        // Some views also write the geo-referenced cloud shadow map (DESIGN §3), 150 km wide.
+        request.shadowMap = view.shadowMapSize > 0;
+        request.shadowMapSize = view.shadowMapSize > 0 ? view.shadowMapSize : request.shadowMapSize;
+        request.shadowMapExtentM = 150000.0;
         setWeather(renderer, view.weather ? *view.weather : makeBuiltinWeather(request.unixTimeS));
         auto start = std::chrono::steady_clock::now();
         RenderResult result;

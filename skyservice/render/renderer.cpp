@@ -6,6 +6,7 @@
 #include "shaders/shared/weather_window.h"
 #include "skyservice/render/atmosphere_passes.h"
 #include "skyservice/render/frame_setup.h"
+#include "skyservice/render/shadow_map.h"
 #include "skyservice/sky/blue_noise.h"
 
 #include <algorithm>
@@ -479,7 +480,7 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     result.moonElevationDeg = sunMoon.moon.elevationDeg;
     result.moonIlluminatedFraction = sunMoon.moonIlluminatedFraction;
     result.exposure = light.exposure;
-    result.moonIsKeyLight = sunMoon.sun.directionEnu.z < -0.07;
+    result.moonIsKeyLight = moonIsKeyLight(sunMoon);
     if (request.shadowMap)
         SKY_TRY(renderShadowMap(r, request, quality, camera, sunMoon, result));
     return SkyStatus::success();
