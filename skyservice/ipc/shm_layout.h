@@ -1,0 +1,110 @@
+/* SPDX-License-Identifier: MIT */
+/* The shared-memory frame ring (DESIGN §5 "Frame sharing" (1)): the byte layout that the service writes
+ * and libskyclient reads. Plain C so that C clients can include it; every field has a fixed size and the
+ * structs have no implicit padding (static_asserts in skyservice/ipc/shm_ring.cpp).
+ *
+ * One POSIX shared-memory object (shm_open name given in the `subscribed` reply) holds:
+ *
+ *   offset 0                       SkyShmHeader
+ *   header.slots_offset + i*stride SkyShmSlot i (i < slot_count), each followed in its stride by
+ *     slot.image_offset            the frame: width*height pixels, row_bytes per row, top row first
+ *     slot.shadow_offset           the shadow map: shadow_size^2 float32 key-light transmittance,
+ *                                  north row first, west column first (0 = opaque, 1 = clear)
+ *
+ * Concurrency: one writer (the service), any number of readers, nobody ever blocks. Each slot has a
+ * sequence lock: the writer makes `sequence` odd, writes the slot, makes it even again (release
+ * stores), and then publishes the slot in header.latest_slot / latest_frame_id. A reader loads
+ * `sequence` (acquire); odd means "being written, take another"; it reads what it needs and loads
+ * `sequence` again: a different value means the writer came round and the read is torn. The writer
+ * fills the slots round robin, so a reader has (slot_count - 1) frame intervals to finish a read.
+ * Atomic fields are accessed with __atomic_load_n / __atomic_store_n (GCC/Clang builtins, valid in C
+ * and C++) because C11 _Atomic and std::atomic do not share a layout guarantee.
+ */
+#ifndef SKY_SHM_LAYOUT_H
+#define SKY_SHM_LAYOUT_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SKY_SHM_MAGIC 0x31304D5246594B53ull /* "SKYFRM01" read as little-endian bytes */
+#define SKY_SHM_VERSION 1u
+
+/* Pixel formats of SkyShmSlot.format. */
+#define SKY_FORMAT_RGBA8_SRGB 1u      /* tone-mapped display frame, 4 bytes per pixel, alpha 255 */
+#define SKY_FORMAT_RGBA16F_LINEAR 2u  /* linear radiance (pre-exposed), half floats, 8 bytes per pixel */
+
+/* The view a frame was rendered for. Names and units as in DESIGN §5 (CLI, socket API, sidecar JSON). */
+typedef struct SkyShmView
+{
+    double lat_deg;      /* geodetic latitude of the eye (degrees) */
+    double lon_deg;      /* longitude of the eye (degrees, [-180, 180)) */
+    double alt_m;        /* height above the WGS84 ellipsoid (metres) */
+    double heading_deg;  /* clockwise from true north (degrees) */
+    double pitch_deg;    /* + nose up (degrees) */
+    double roll_deg;     /* + right wing down (degrees) */
+    double fov_deg;      /* vertical field of view (degrees) */
+    uint32_t width;      /* pixels */
+    uint32_t height;     /* pixels */
+} SkyShmView;
+
+/* Where the shadow map's texels lie on the earth (skyservice/render/shadow_map.h): the azimuthal
+ * equidistant projection centred at (centre_lat_deg, centre_lon_deg); texel (column c, row r) has
+ * easting (c + 0.5 - size/2) * extent_m/size and northing (size/2 - r - 0.5) * extent_m/size. */
+typedef struct SkyShmShadowGeoRef
+{
+    double centre_lat_deg;
+    double centre_lon_deg;
+    double extent_m;            /* edge length of the square on the ground (metres) */
+    double corner_lat_deg[4];   /* corners NW, NE, SE, SW (outer texel edges) */
+    double corner_lon_deg[4];
+    double sun_azimuth_deg;     /* key light (sun, or the moon at night) when the map was made */
+    double sun_elevation_deg;
+    uint32_t size_texels;       /* texels per side; 0 = this frame has no shadow map */
+    uint32_t light_is_moon;     /* 1 when the key light was the moon */
+} SkyShmShadowGeoRef;
+
+typedef struct SkyShmHeader
+{
+    uint64_t magic;            /* SKY_SHM_MAGIC */
+    uint32_t version;          /* SKY_SHM_VERSION */
+    uint32_t header_bytes;     /* sizeof(SkyShmHeader) */
+    uint32_t slot_count;       /* slots in the ring (>= 2) */
+    uint32_t slot_header_bytes;/* sizeof(SkyShmSlot) */
+    uint64_t slot_stride;      /* bytes from one slot to the next (a multiple of 4096) */
+    uint64_t slots_offset;     /* offset of slot 0 from the start of the object (a multiple of 4096) */
+    uint64_t total_bytes;      /* size of the whole object */
+    uint32_t max_width;        /* largest frame a slot holds (pixels) */
+    uint32_t max_height;
+    uint32_t max_shadow_size;  /* largest shadow map a slot holds (texels per side) */
+    uint32_t writer_pid;       /* the service's process id */
+    uint64_t latest_frame_id;  /* ATOMIC: frame id of the newest complete slot, 0 = none yet */
+    uint64_t latest_slot;      /* ATOMIC: index of that slot */
+    uint64_t writer_heartbeat_ns; /* ATOMIC: CLOCK_MONOTONIC of the writer's last frame, for liveness */
+    uint64_t reserved[8];
+} SkyShmHeader;
+
+typedef struct SkyShmSlot
+{
+    uint64_t sequence;         /* ATOMIC: the sequence lock; odd while the writer is in the slot */
+    uint64_t frame_id;         /* increases by one per rendered frame, starts at 1 */
+    double sim_time_unix_s;    /* UTC of the rendered scene (s since 1970, fractional) */
+    double exposure;           /* pre-exposure: linear values / exposure = W m^-2 sr^-1 nm^-1 */
+    SkyShmView view;
+    uint32_t format;           /* SKY_FORMAT_* */
+    uint32_t row_bytes;        /* bytes per image row */
+    uint64_t image_offset;     /* from the start of this slot */
+    uint64_t image_bytes;
+    uint64_t shadow_offset;    /* from the start of this slot; shadow.size_texels^2 floats */
+    uint64_t shadow_bytes;     /* 0 when the frame has no shadow map */
+    SkyShmShadowGeoRef shadow;
+    uint64_t reserved[4];
+} SkyShmSlot;
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SKY_SHM_LAYOUT_H */
