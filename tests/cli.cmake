@@ -17,7 +17,8 @@ add_test(NAME cli.render.bad_size COMMAND ${SKY_EXPECT} 2 "--width" ${SKY_BIN} r
 # Unknown options are usage errors.
 add_test(NAME cli.render.unknown_option COMMAND ${SKY_EXPECT} 2 "junk" ${SKY_BIN} render --junk)
 # A missing subcommand is a usage error.
-add_test(NAME cli.no_subcommand COMMAND ${SKY_EXPECT} 2 "subcommand" ${SKY_BIN})
+# Without a subcommand skyservice is the daemon (issue 6): a bad daemon option is refused with exit 2.
+add_test(NAME cli.daemon.bad_log_level COMMAND ${SKY_EXPECT} 2 "log-level" ${SKY_BIN} --log-level loud)
 # A missing weather file is named in the error (exit 3), before the GPU starts.
 add_test(NAME cli.render.missing_weather COMMAND ${SKY_EXPECT} 3 "no-such-file.skywx" ${SKY_BIN} render
          --weather ${SKY_CLI_TMP}/no-such-file.skywx --out ${SKY_CLI_TMP}/never)

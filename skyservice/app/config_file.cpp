@@ -36,6 +36,7 @@ std::map<std::string, Key> keys()
         {"march.light_samples", u32(&QualitySettings::lightSamples, 1, 6)},
         {"march.accumulation_frames", u32(&QualitySettings::accumulationFrames, 1, 64)},
         {"march.max_distance_m", real(&QualitySettings::maxDistanceM, 1000, 2000000)},
+        {"march.reprojected", flag(&QualitySettings::reprojected)},
         {"lighting.octaves", u32(&QualitySettings::octaves, 1, 8)},
         {"lighting.octave_attenuation", real(&QualitySettings::octaveAttenuation, 0, 1)},
         {"lighting.octave_contribution", real(&QualitySettings::octaveContribution, 0, 1)},
@@ -80,7 +81,8 @@ bool applyConfigFile(const std::string& path, QualitySettings& quality, std::str
     const std::map<std::string, Key> known = keys();
     std::string bad;
     table.for_each([&](const toml::key& section, auto&& node) {
-        if (!bad.empty())
+        // [service] belongs to the daemon (skyservice/service/service_config.h), read from the same file.
+        if (!bad.empty() || section.str() == "service")
             return;
         if constexpr (!toml::is_table<decltype(node)>)
         {

@@ -76,7 +76,8 @@ typedef struct SkyFrame
 SkyResult sky_client_connect(const char* socket_path, const char* client_name, SkyClient** out_client);
 /* Closes the connection and unmaps everything. Null is allowed. */
 void sky_client_close(SkyClient* client);
-/* One line: why the last call failed ("" after success). Valid until the next call. */
+/* One line: why the last call failed ("" after success). Valid until the next call. With NULL: why
+ * this thread's last sky_client_connect failed. */
 const char* sky_client_last_error(const SkyClient* client);
 
 SkyResult sky_client_set_view(SkyClient* client, const SkyView* view);

@@ -46,7 +46,8 @@ public:
     ShmRingWriter& operator=(const ShmRingWriter&) = delete;
     ~ShmRingWriter() { destroy(); }
 
-    /// Creates (replacing a stale object of the same name), sizes and maps the ring; false + error.
+    /// Creates (replacing a stale object of the same name; one whose writer_pid still runs, another
+    /// service, is refused), sizes and maps the ring; false + error.
     bool create(const ShmRingConfig& config, std::string& error);
     /// Unmaps and unlinks. Safe to call twice.
     void destroy();

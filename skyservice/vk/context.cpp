@@ -206,11 +206,15 @@ SkyStatus createContext(Context& ctx, const ContextOptions& options)
     vkGetPhysicalDeviceMemoryProperties(ctx.physicalDevice, &ctx.memoryProperties);
     ctx.deviceName = ctx.properties.deviceName;
 
+    VkPhysicalDeviceIDProperties idProps = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES};
     VkPhysicalDeviceDriverProperties driverProps = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    driverProps.pNext = &idProps;
     VkPhysicalDeviceProperties2 props2 = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     props2.pNext = &driverProps;
     vkGetPhysicalDeviceProperties2(ctx.physicalDevice, &props2);
     ctx.driverInfo = std::string(driverProps.driverName) + " " + driverProps.driverInfo;
+    std::memcpy(ctx.deviceUUID, idProps.deviceUUID, VK_UUID_SIZE);
+    std::memcpy(ctx.driverUUID, idProps.driverUUID, VK_UUID_SIZE);
 
     uint32_t familyCount = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &familyCount, nullptr);
@@ -240,6 +244,23 @@ SkyStatus createContext(Context& ctx, const ContextOptions& options)
     features12.hostQueryReset = VK_TRUE;
     VkPhysicalDeviceFeatures2 features = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features.pNext = &features12;
+    // Optional frame-export support (frame_export.h): external memory, timeline semaphores, and
+    // exportable semaphores when the device has them; a device without them still renders.
+    {
+        VkPhysicalDeviceVulkan12Features supported12 = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+        VkPhysicalDeviceFeatures2 supported = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+        supported.pNext = &supported12;
+        vkGetPhysicalDeviceFeatures2(ctx.physicalDevice, &supported);
+        ctx.timelineSemaphore = supported12.timelineSemaphore == VK_TRUE;
+        features12.timelineSemaphore = supported12.timelineSemaphore;
+    }
+    ctx.externalMemoryFd = hasDeviceExtension(ctx.physicalDevice, VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
+    if (ctx.externalMemoryFd)
+        deviceExtensions.push_back(VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
+    ctx.externalSemaphoreFd =
+        ctx.timelineSemaphore && hasDeviceExtension(ctx.physicalDevice, VK_KHR_EXTERNAL_SEMAPHORE_FD_EXTENSION_NAME);
+    if (ctx.externalSemaphoreFd)
+        deviceExtensions.push_back(VK_KHR_EXTERNAL_SEMAPHORE_FD_EXTENSION_NAME);
 
     VkDeviceCreateInfo deviceInfo = {VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     deviceInfo.pNext = &features;
@@ -258,6 +279,13 @@ SkyStatus createContext(Context& ctx, const ContextOptions& options)
     vkGetDeviceQueue(ctx.device, ctx.queueFamily, 0, &ctx.queue);
     ctx.cmdPushDescriptorSet =
         reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(ctx.device, "vkCmdPushDescriptorSetKHR"));
+    if (ctx.externalMemoryFd)
+        ctx.getMemoryFd = reinterpret_cast<PFN_vkGetMemoryFdKHR>(vkGetDeviceProcAddr(ctx.device, "vkGetMemoryFdKHR"));
+    if (ctx.externalSemaphoreFd)
+        ctx.getSemaphoreFd =
+            reinterpret_cast<PFN_vkGetSemaphoreFdKHR>(vkGetDeviceProcAddr(ctx.device, "vkGetSemaphoreFdKHR"));
+    ctx.externalMemoryFd = ctx.getMemoryFd != nullptr;
+    ctx.externalSemaphoreFd = ctx.getSemaphoreFd != nullptr;
     if (!options.quiet)
         std::fprintf(stderr, "skyservice: Vulkan device %s (%s)\n", ctx.deviceName.c_str(), ctx.driverInfo.c_str());
     return SkyStatus::success();
@@ -281,6 +309,8 @@ void destroyContext(Context& ctx)
     ctx.instance = VK_NULL_HANDLE;
     ctx.physicalDevice = VK_NULL_HANDLE;
     ctx.queue = VK_NULL_HANDLE;
+    ctx.getMemoryFd = nullptr;
+    ctx.getSemaphoreFd = nullptr;
 }
 
 void setObjectName(const Context& ctx, VkObjectType type, uint64_t handle, const char* name)

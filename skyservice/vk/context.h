@@ -36,6 +36,15 @@ struct Context
     std::string deviceName;
     std::string driverInfo;
 
+    // Optional, for frame export (skyservice/render/frame_export.h): enabled when the device has them.
+    bool externalMemoryFd = false;     ///< VK_KHR_external_memory_fd enabled
+    bool externalSemaphoreFd = false;  ///< VK_KHR_external_semaphore_fd enabled (and timelineSemaphore on)
+    bool timelineSemaphore = false;    ///< the Vulkan 1.2 timelineSemaphore feature enabled
+    uint8_t deviceUUID[VK_UUID_SIZE] = {};  ///< VkPhysicalDeviceIDProperties: importers must match it
+    uint8_t driverUUID[VK_UUID_SIZE] = {};
+    PFN_vkGetMemoryFdKHR getMemoryFd = nullptr;        ///< when externalMemoryFd
+    PFN_vkGetSemaphoreFdKHR getSemaphoreFd = nullptr;  ///< when externalSemaphoreFd
+
     /// Validation messages of severity warning or error seen so far (tests fail on any).
     std::atomic<uint32_t> validationMessages{0};
 };

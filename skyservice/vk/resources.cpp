@@ -107,7 +107,10 @@ SkyStatus createBuffer(const Context& ctx, MemoryTracker& tracker, Buffer& out, 
     VK_CHECK(vkBindBufferMemory(ctx.device, out.buffer, out.memory, 0));
     if (use == MemoryUse::HostVisible)
         VK_CHECK(vkMapMemory(ctx.device, out.memory, 0, VK_WHOLE_SIZE, 0, &out.mapped));
-    out.size = req.size;
+    // The descriptor range must not exceed the buffer's own size (VUID-VkDescriptorBufferInfo-range-00342,
+    // seen on NVIDIA where req.size is padded); the tracker counts the padded allocation.
+    out.size = size;
+    out.allocationBytes = req.size;
     out.name = name;
     setObjectName(ctx, VK_OBJECT_TYPE_BUFFER, uint64_t(out.buffer), name);
     return SkyStatus::success();
@@ -117,7 +120,7 @@ void destroyBuffer(const Context& ctx, MemoryTracker& tracker, Buffer& buffer)
 {
     if (buffer.buffer)
         vkDestroyBuffer(ctx.device, buffer.buffer, nullptr);
-    release(ctx, tracker, buffer.memory, buffer.size, buffer.name);
+    release(ctx, tracker, buffer.memory, buffer.allocationBytes, buffer.name);
     buffer = Buffer{};
 }
 

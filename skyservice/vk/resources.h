@@ -28,7 +28,8 @@ struct Buffer
     VkBuffer buffer = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
     void* mapped = nullptr;  ///< non-null for host-visible buffers (persistently mapped)
-    VkDeviceSize size = 0;
+    VkDeviceSize size = 0;             ///< bytes asked for: the range a descriptor of the whole buffer covers
+    VkDeviceSize allocationBytes = 0;  ///< bytes of device memory behind it (size rounded up by the driver)
     std::string name;
 };
 

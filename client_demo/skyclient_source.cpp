@@ -1,0 +1,208 @@
+// SPDX-License-Identifier: MIT
+#include "client_demo/skyclient_source.h"
+
+#include "skyservice/client/skyclient.h"
+
+#ifdef DEMO_HAVE_VULKAN_IMPORT
+#include "client_demo/vulkan_import.h"
+#endif
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+
+namespace demo
+{
+
+#ifndef DEMO_HAVE_VULKAN_IMPORT
+// Without skyclient_vulkan the zero-copy transport is never taken; this keeps unique_ptr's deleter whole.
+class VulkanFrameImport
+{
+};
+#endif
+
+namespace
+{
+
+SkyClient* connectClient(const std::string& socketPath, std::string& error)
+{
+    SkyClient* client = nullptr;
+    if (sky_client_connect(socketPath.c_str(), "client_demo", &client) != SKY_OK)
+    {
+        error = "cannot connect to the sky service at " + socketPath + ": " +
+                (client ? sky_client_last_error(client) : "no service there");
+        sky_client_close(client);
+        return nullptr;
+    }
+    return client;
+}
+
+}  // namespace
+
+std::unique_ptr<SkyClientSource> SkyClientSource::open(const std::string& socketPath, Transport transport,
+                                                       VulkanDevice* vk, const DeviceRequest& request,
+                                                       std::string& error)
+{
+    std::unique_ptr<SkyClientSource> source(new SkyClientSource());
+    source->client_ = connectClient(socketPath, error);
+    if (!source->client_)
+        return nullptr;
+
+#ifdef DEMO_HAVE_VULKAN_IMPORT
+    if (transport != Transport::Shm && vk != nullptr)
+    {
+        SkyExportedFrames exported{};
+        std::string why;
+        if (sky_client_subscribe_vulkan(source->client_, &exported) != SKY_OK)
+            why = std::string("the service exports no frames: ") + sky_client_last_error(source->client_);
+        else
+        {
+            DeviceRequest zeroCopy = request;
+            zeroCopy.preferred = VulkanFrameImport::findServiceDevice(vk->instance, exported);
+            for (const char* e : VulkanFrameImport::requiredExtensions())
+                zeroCopy.extensions.push_back(e);
+            if (zeroCopy.preferred == VK_NULL_HANDLE)
+                why = "the service renders on a GPU this process cannot see (different device or driver UUID)";
+            else if (request.surface != VK_NULL_HANDLE && !canPresent(zeroCopy.preferred, request.surface))
+                why = "the service's GPU cannot present to this window";
+            else if (!createVulkanDevice(*vk, zeroCopy, why))
+                why = "device for zero-copy import: " + why;
+            else
+            {
+                source->import_ = VulkanFrameImport::create(*vk, exported, why);
+                if (source->import_)
+                    return source;
+                destroyVulkanDeviceOnly(*vk);  // the shm fallback below makes its own
+            }
+            closeExportedFds(exported);
+        }
+        if (transport == Transport::Vulkan)
+        {
+            error = "zero-copy transport unavailable: " + why;
+            return nullptr;
+        }
+        std::fprintf(stderr, "client_demo: zero-copy transport unavailable (%s); using shared memory\n", why.c_str());
+        // A fresh connection: the service's zero-copy subscription ends with the old one.
+        sky_client_close(source->client_);
+        source->client_ = connectClient(socketPath, error);
+        if (!source->client_)
+            return nullptr;
+    }
+#else
+    if (transport == Transport::Vulkan)
+    {
+        error = "this client_demo was built without skyclient_vulkan: no zero-copy transport";
+        return nullptr;
+    }
+#endif
+    if (sky_client_subscribe_shm(source->client_) != SKY_OK)
+    {
+        error = std::string("subscribing to the shared-memory ring: ") + sky_client_last_error(source->client_);
+        return nullptr;
+    }
+    if (vk != nullptr && vk->device == VK_NULL_HANDLE && !createVulkanDevice(*vk, request, error))
+        return nullptr;
+    return source;
+}
+
+SkyClientSource::~SkyClientSource()
+{
+    import_.reset();
+    sky_client_close(client_);
+}
+
+bool SkyClientSource::setView(const SkyShmView& view)
+{
+    if (sky_client_set_view(client_, &view) == SKY_OK)
+        return true;
+    error_ = std::string("set_view: ") + sky_client_last_error(client_);
+    return false;
+}
+
+bool SkyClientSource::setTime(double unixTimeS, double rate)
+{
+    if (sky_client_set_time(client_, unixTimeS, rate) == SKY_OK)
+        return true;
+    error_ = std::string("set_time: ") + sky_client_last_error(client_);
+    return false;
+}
+
+bool SkyClientSource::requestFrame(uint64_t& frameId)
+{
+    if (sky_client_request_frame(client_, &frameId) == SKY_OK)
+        return true;
+    error_ = std::string("render: ") + sky_client_last_error(client_);
+    return false;
+}
+
+std::string SkyClientSource::transportName() const { return import_ ? "vulkan" : "shm"; }
+
+bool SkyClientSource::copyShm(const SkyFrame& frame, LatestFrame& out)
+{
+    if (frame.format != SKY_FORMAT_RGBA8_SRGB || frame.pixels == nullptr || frame.row_bytes < frame.width * 4)
+    {
+        error_ = "the service's frames are not RGBA8 (format " + std::to_string(frame.format) + ")";
+        return false;
+    }
+    out.width = frame.width;
+    out.height = frame.height;
+    out.rgba.resize(size_t(frame.width) * frame.height * 4);
+    for (uint32_t y = 0; y < frame.height; ++y)
+        std::memcpy(out.rgba.data() + size_t(y) * frame.width * 4, frame.pixels + size_t(y) * frame.row_bytes,
+                    size_t(frame.width) * 4);
+    out.shadowSize = frame.shadow_transmittance ? frame.shadow_size : 0;
+    out.shadowTransmittance.assign(frame.shadow_transmittance,
+                                   frame.shadow_transmittance + size_t(out.shadowSize) * out.shadowSize);
+    return true;
+}
+
+FetchStatus SkyClientSource::fetch(uint64_t afterFrameId, int timeoutMs, LatestFrame& out)
+{
+    using Clock = std::chrono::steady_clock;
+    const auto deadline = Clock::now() + std::chrono::milliseconds(timeoutMs);
+    for (;;)
+    {
+        const auto leftMs = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+        SkyResult r = sky_client_wait_frame(client_, afterFrameId, int(std::max<int64_t>(leftMs, 0)));
+        if (r == SKY_ERR_TIMEOUT)
+            return FetchStatus::NoFrame;
+        SkyFrame frame{};
+        if (r == SKY_OK)
+            r = sky_client_acquire_frame(client_, &frame);
+        if (r == SKY_ERR_NO_FRAME)
+            return FetchStatus::NoFrame;
+        if (r != SKY_OK)
+        {
+            error_ = sky_client_last_error(client_);
+            return FetchStatus::Failed;
+        }
+        bool copied = false;
+#ifdef DEMO_HAVE_VULKAN_IMPORT
+        if (import_)
+            copied = import_->copySlot(frame.slot, frame.frame_id, frame.width, frame.height, frame.shadow_size, out,
+                                       error_);
+        else
+#endif
+            copied = copyShm(frame, out);
+        const SkyResult intact = sky_client_release_frame(client_, &frame);
+        if (!copied)
+            return FetchStatus::Failed;
+        if (intact == SKY_ERR_TORN)
+            continue;  // the service rewrote the slot while it was copied: take the next one
+        if (intact != SKY_OK)
+        {
+            error_ = sky_client_last_error(client_);
+            return FetchStatus::Failed;
+        }
+        out.frameId = frame.frame_id;
+        out.simTimeUnixS = frame.sim_time_unix_s;
+        out.view = frame.view;
+        out.shadow = frame.shadow;
+        if (out.shadowSize == 0)
+            out.shadow.size_texels = 0;
+        return FetchStatus::NewFrame;
+    }
+}
+
+}  // namespace demo

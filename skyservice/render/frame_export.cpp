@@ -1,0 +1,510 @@
+// SPDX-License-Identifier: MIT
+#include "skyservice/render/frame_export.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <mutex>
+
+namespace sky
+{
+namespace
+{
+
+constexpr VkExternalMemoryHandleTypeFlagBits kMemoryHandle = VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT;
+constexpr VkExternalSemaphoreHandleTypeFlagBits kSemaphoreHandle = VK_EXTERNAL_SEMAPHORE_HANDLE_TYPE_OPAQUE_FD_BIT;
+
+std::string formatName(VkFormat format)
+{
+    return format == VK_FORMAT_R8G8B8A8_UNORM ? "R8G8B8A8_UNORM" : format == VK_FORMAT_R32_SFLOAT ? "R32_SFLOAT"
+                                                                                                  : std::to_string(int(format));
+}
+
+// Whether images of this format, tiling and usage can be exported as opaque fds (and need a dedicated
+// allocation: we always make one, so only exportability matters).
+SkyStatus checkExportable(const Context& ctx, VkFormat format)
+{
+    VkPhysicalDeviceExternalImageFormatInfo externalInfo = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_IMAGE_FORMAT_INFO};
+    externalInfo.handleType = kMemoryHandle;
+    VkPhysicalDeviceImageFormatInfo2 info = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_IMAGE_FORMAT_INFO_2};
+    info.pNext = &externalInfo;
+    info.format = format;
+    info.type = VK_IMAGE_TYPE_2D;
+    info.tiling = VK_IMAGE_TILING_OPTIMAL;
+    info.usage = kFrameExportUsage;
+    VkExternalImageFormatProperties externalProps = {VK_STRUCTURE_TYPE_EXTERNAL_IMAGE_FORMAT_PROPERTIES};
+    VkImageFormatProperties2 props = {VK_STRUCTURE_TYPE_IMAGE_FORMAT_PROPERTIES_2};
+    props.pNext = &externalProps;
+    VkResult res = vkGetPhysicalDeviceImageFormatProperties2(ctx.physicalDevice, &info, &props);
+    if (res != VK_SUCCESS)
+        return SkyStatus::failure("frame export: " + formatName(format) + " images with opaque-fd memory are not "
+                                  "supported by " + ctx.deviceName + " (" + vkResultName(res) + ")",
+                                  res);
+    VkExternalMemoryFeatureFlags features = externalProps.externalMemoryProperties.externalMemoryFeatures;
+    if (!(features & VK_EXTERNAL_MEMORY_FEATURE_EXPORTABLE_BIT))
+        return SkyStatus::failure("frame export: " + ctx.deviceName + " cannot export " + formatName(format) +
+                                      " image memory as an opaque fd",
+                                  VK_ERROR_FORMAT_NOT_SUPPORTED);
+    return SkyStatus::success();
+}
+
+SkyStatus createExportedImage(Renderer& r, ExportedImage& out, VkFormat format, uint32_t width, uint32_t height,
+                              const std::string& name)
+{
+    const Context& ctx = r.ctx;
+    out = ExportedImage{};
+    VkExternalMemoryImageCreateInfo externalInfo = {VK_STRUCTURE_TYPE_EXTERNAL_MEMORY_IMAGE_CREATE_INFO};
+    externalInfo.handleTypes = kMemoryHandle;
+    VkImageCreateInfo info = {VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    info.pNext = &externalInfo;
+    info.imageType = VK_IMAGE_TYPE_2D;
+    info.format = format;
+    info.extent = {width, height, 1};
+    info.mipLevels = 1;
+    info.arrayLayers = 1;
+    info.samples = VK_SAMPLE_COUNT_1_BIT;
+    info.tiling = VK_IMAGE_TILING_OPTIMAL;
+    info.usage = kFrameExportUsage;
+    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VK_TRY(vkCreateImage(ctx.device, &info, nullptr, &out.image));
+
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(ctx.device, out.image, &req);
+    bool found = false;
+    for (uint32_t i = 0; i < ctx.memoryProperties.memoryTypeCount && !found; ++i)
+        if ((req.memoryTypeBits & (1u << i)) &&
+            (ctx.memoryProperties.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
+        {
+            out.memoryTypeIndex = i;
+            found = true;
+        }
+    if (!found)
+    {
+        vkDestroyImage(ctx.device, out.image, nullptr);
+        out = ExportedImage{};
+        return SkyStatus::failure("frame export: no device-local memory type for " + name,
+                                  VK_ERROR_OUT_OF_DEVICE_MEMORY);
+    }
+    VkMemoryDedicatedAllocateInfo dedicated = {VK_STRUCTURE_TYPE_MEMORY_DEDICATED_ALLOCATE_INFO};
+    dedicated.image = out.image;
+    VkExportMemoryAllocateInfo exportInfo = {VK_STRUCTURE_TYPE_EXPORT_MEMORY_ALLOCATE_INFO};
+    exportInfo.pNext = &dedicated;
+    exportInfo.handleTypes = kMemoryHandle;
+    VkMemoryAllocateInfo alloc = {VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.pNext = &exportInfo;
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = out.memoryTypeIndex;
+    VkResult res = vkAllocateMemory(ctx.device, &alloc, nullptr, &out.memory);
+    if (res != VK_SUCCESS)
+    {
+        vkDestroyImage(ctx.device, out.image, nullptr);
+        out = ExportedImage{};
+        return SkyStatus::failure("out of device memory allocating " + std::to_string(req.size) + " bytes for " + name +
+                                      " (" + vkResultName(res) + ")",
+                                  res);
+    }
+    VK_CHECK(vkBindImageMemory(ctx.device, out.image, out.memory, 0));
+    out.format = format;
+    out.width = width;
+    out.height = height;
+    out.allocationBytes = req.size;
+    out.memoryTypeBits = req.memoryTypeBits;
+    out.name = name;
+    setObjectName(ctx, VK_OBJECT_TYPE_IMAGE, uint64_t(out.image), name.c_str());
+    std::lock_guard<std::mutex> lock(r.memory.mutex);
+    r.memory.liveBytes[name] += req.size;
+    r.memory.totalBytes += req.size;
+    r.memory.peakBytes = std::max(r.memory.peakBytes, r.memory.totalBytes);
+    return SkyStatus::success();
+}
+
+void destroyExportedImage(Renderer& r, ExportedImage& image)
+{
+    if (image.image)
+        vkDestroyImage(r.ctx.device, image.image, nullptr);
+    if (image.memory)
+    {
+        vkFreeMemory(r.ctx.device, image.memory, nullptr);
+        std::lock_guard<std::mutex> lock(r.memory.mutex);
+        auto it = r.memory.liveBytes.find(image.name);
+        if (it != r.memory.liveBytes.end())
+        {
+            it->second -= std::min(it->second, image.allocationBytes);
+            if (it->second == 0)
+                r.memory.liveBytes.erase(it);
+        }
+        r.memory.totalBytes -= std::min(r.memory.totalBytes, image.allocationBytes);
+    }
+    image = ExportedImage{};
+}
+
+// The timeline semaphore, when the device can export one (never on lavapipe: no external_semaphore_fd).
+SkyStatus createExportedTimeline(const Context& ctx, VkSemaphore& out)
+{
+    out = VK_NULL_HANDLE;
+    if (!ctx.externalSemaphoreFd || !ctx.timelineSemaphore)
+        return SkyStatus::success();
+    VkSemaphoreTypeCreateInfo typeInfo = {VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO};
+    typeInfo.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
+    typeInfo.initialValue = 0;
+    VkPhysicalDeviceExternalSemaphoreInfo query = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_SEMAPHORE_INFO};
+    query.pNext = &typeInfo;
+    query.handleType = kSemaphoreHandle;
+    VkExternalSemaphoreProperties props = {VK_STRUCTURE_TYPE_EXTERNAL_SEMAPHORE_PROPERTIES};
+    vkGetPhysicalDeviceExternalSemaphoreProperties(ctx.physicalDevice, &query, &props);
+    if (!(props.externalSemaphoreFeatures & VK_EXTERNAL_SEMAPHORE_FEATURE_EXPORTABLE_BIT))
+        return SkyStatus::success();  // fall back to waiting for the fence (header comment)
+    VkExportSemaphoreCreateInfo exportInfo = {VK_STRUCTURE_TYPE_EXPORT_SEMAPHORE_CREATE_INFO};
+    exportInfo.handleTypes = kSemaphoreHandle;
+    typeInfo.pNext = &exportInfo;
+    VkSemaphoreCreateInfo info = {VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    info.pNext = &typeInfo;
+    VK_TRY(vkCreateSemaphore(ctx.device, &info, nullptr, &out));
+    setObjectName(ctx, VK_OBJECT_TYPE_SEMAPHORE, uint64_t(out), "export timeline");
+    return SkyStatus::success();
+}
+
+struct Access
+{
+    VkPipelineStageFlags2 stage;
+    VkAccessFlags2 access;
+    VkImageLayout layout;
+    uint32_t queueFamily;
+};
+
+VkImageMemoryBarrier2 imageBarrier(VkImage image, const Access& from, const Access& to)
+{
+    VkImageMemoryBarrier2 b = {VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.image = image;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    b.srcStageMask = from.stage;
+    b.srcAccessMask = from.access;
+    b.oldLayout = from.layout;
+    b.srcQueueFamilyIndex = from.queueFamily;
+    b.dstStageMask = to.stage;
+    b.dstAccessMask = to.access;
+    b.newLayout = to.layout;
+    b.dstQueueFamilyIndex = to.queueFamily;
+    return b;
+}
+
+void barriers(VkCommandBuffer cmd, const std::vector<VkImageMemoryBarrier2>& images)
+{
+    VkDependencyInfo dep = {VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = uint32_t(images.size());
+    dep.pImageMemoryBarriers = images.data();
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+SkyStatus waitSlot(const Context& ctx, FrameExport& e, uint32_t slot)
+{
+    if (!e.fencePending[slot])
+        return SkyStatus::success();
+    VK_TRY(vkWaitForFences(ctx.device, 1, &e.fences[slot], VK_TRUE, UINT64_MAX));
+    VK_TRY(vkResetFences(ctx.device, 1, &e.fences[slot]));
+    e.fencePending[slot] = false;
+    return SkyStatus::success();
+}
+
+std::string hex(const uint8_t* bytes, size_t count)
+{
+    std::string s;
+    char digits[3];
+    for (size_t i = 0; i < count; ++i)
+    {
+        std::snprintf(digits, sizeof digits, "%02x", unsigned(bytes[i]));
+        s += digits;
+    }
+    return s;
+}
+
+nlohmann::json imageJson(const ExportedImage& image)
+{
+    return {{"allocation_bytes", uint64_t(image.allocationBytes)},
+            {"memory_type_bits", image.memoryTypeBits},
+            {"vk_format", uint32_t(image.format)},
+            {"width", image.width},
+            {"height", image.height},
+            {"linear_tiling", false},
+            {"row_pitch", 0}};
+}
+
+}  // namespace
+
+SkyStatus createFrameExport(Renderer& r, FrameExport& e, uint32_t slots, uint32_t maxWidth, uint32_t maxHeight,
+                            uint32_t maxShadowSize)
+{
+    e = FrameExport{};
+    const Context& ctx = r.ctx;
+    if (!ctx.externalMemoryFd)
+        return SkyStatus::failure("frame export needs " + std::string(VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME) +
+                                      ", which " + ctx.deviceName + " does not offer",
+                                  VK_ERROR_EXTENSION_NOT_PRESENT);
+    if (slots < 1 || slots > 4 || maxWidth < 1 || maxHeight < 1)
+        return SkyStatus::failure("frame export: slots must be in [1, 4] and the frame size at least 1x1",
+                                  VK_ERROR_INITIALIZATION_FAILED);
+    SKY_TRY(checkExportable(ctx, VK_FORMAT_R8G8B8A8_UNORM));
+    if (maxShadowSize > 0)
+    {
+        SKY_TRY(checkExportable(ctx, VK_FORMAT_R32_SFLOAT));
+        // The shadow pass writes rgba16f; the export blits its red channel (transmittance) into R32_SFLOAT.
+        VkFormatProperties src, dst;
+        vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice, VK_FORMAT_R16G16B16A16_SFLOAT, &src);
+        vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice, VK_FORMAT_R32_SFLOAT, &dst);
+        if (!(src.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_SRC_BIT) ||
+            !(dst.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_DST_BIT))
+            return SkyStatus::failure("frame export: " + ctx.deviceName +
+                                          " cannot blit R16G16B16A16_SFLOAT to R32_SFLOAT (shadow map export)",
+                                      VK_ERROR_FORMAT_NOT_SUPPORTED);
+    }
+
+    e.slots = slots;
+    e.maxWidth = maxWidth;
+    e.maxHeight = maxHeight;
+    e.maxShadowSize = maxShadowSize;
+    e.frames.resize(slots);
+    e.shadows.resize(maxShadowSize > 0 ? slots : 0);
+    SkyStatus s = SkyStatus::success();
+    for (uint32_t i = 0; i < slots && s.ok(); ++i)
+    {
+        s = createExportedImage(r, e.frames[i], VK_FORMAT_R8G8B8A8_UNORM, maxWidth, maxHeight,
+                                "export frame " + std::to_string(i));
+        if (s.ok() && maxShadowSize > 0)
+            s = createExportedImage(r, e.shadows[i], VK_FORMAT_R32_SFLOAT, maxShadowSize, maxShadowSize,
+                                    "export shadow " + std::to_string(i));
+    }
+    if (s.ok())
+        s = createExportedTimeline(ctx, e.timeline);
+    if (s.ok())
+    {
+        VkCommandPoolCreateInfo poolInfo = {VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+        poolInfo.queueFamilyIndex = ctx.queueFamily;
+        VkResult res = vkCreateCommandPool(ctx.device, &poolInfo, nullptr, &e.pool);
+        if (res != VK_SUCCESS)
+        {
+            e.pool = VK_NULL_HANDLE;
+            s = SkyStatus::failure(std::string("vkCreateCommandPool failed: ") + vkResultName(res), res);
+        }
+    }
+    if (s.ok())
+    {
+        e.commands.resize(slots);
+        VkCommandBufferAllocateInfo alloc = {VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        alloc.commandPool = e.pool;
+        alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        alloc.commandBufferCount = slots;
+        VK_CHECK(vkAllocateCommandBuffers(ctx.device, &alloc, e.commands.data()));
+        e.fences.assign(slots, VK_NULL_HANDLE);
+        e.fencePending.assign(slots, false);
+        VkFenceCreateInfo fenceInfo = {VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        for (uint32_t i = 0; i < slots; ++i)
+            VK_CHECK(vkCreateFence(ctx.device, &fenceInfo, nullptr, &e.fences[i]));
+    }
+    if (!s.ok())
+        destroyFrameExport(r, e);
+    return s;
+}
+
+void destroyFrameExport(Renderer& r, FrameExport& e)
+{
+    const Context& ctx = r.ctx;
+    for (size_t i = 0; i < e.fences.size(); ++i)
+    {
+        if (e.fencePending[i])
+            vkWaitForFences(ctx.device, 1, &e.fences[i], VK_TRUE, UINT64_MAX);
+        vkDestroyFence(ctx.device, e.fences[i], nullptr);
+    }
+    if (e.pool)
+        vkDestroyCommandPool(ctx.device, e.pool, nullptr);
+    if (e.timeline)
+        vkDestroySemaphore(ctx.device, e.timeline, nullptr);
+    for (ExportedImage& image : e.frames)
+        destroyExportedImage(r, image);
+    for (ExportedImage& image : e.shadows)
+        destroyExportedImage(r, image);
+    e = FrameExport{};
+}
+
+SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frameId, const RenderResult& frame)
+{
+    const Context& ctx = r.ctx;
+    if (slot >= e.slots)
+        return SkyStatus::failure("frame export: slot " + std::to_string(slot) + " of " + std::to_string(e.slots),
+                                  VK_ERROR_UNKNOWN);
+    if (frame.width == 0 || frame.height == 0 || !r.displayImage.image || frame.width != r.displayImage.extent.width ||
+        frame.height != r.displayImage.extent.height)
+        return SkyStatus::failure("frame export: no rendered frame of this size on the GPU", VK_ERROR_UNKNOWN);
+    if (frame.width > e.maxWidth || frame.height > e.maxHeight)
+        return SkyStatus::failure("frame export: the frame (" + std::to_string(frame.width) + "x" +
+                                      std::to_string(frame.height) + ") is larger than the exported images (" +
+                                      std::to_string(e.maxWidth) + "x" + std::to_string(e.maxHeight) + ")",
+                                  VK_ERROR_UNKNOWN);
+    const uint32_t shadowSize = frame.shadowMapSize;
+    if (shadowSize > 0 && (shadowSize > e.maxShadowSize || !r.shadowPass.image.image ||
+                           r.shadowPass.image.extent.width != shadowSize))
+        return SkyStatus::failure("frame export: the shadow map (" + std::to_string(shadowSize) +
+                                      " texels) is larger than the exported shadow images (" +
+                                      std::to_string(e.maxShadowSize) + ") or not on the GPU",
+                                  VK_ERROR_UNKNOWN);
+    if (e.timeline && frameId <= e.lastSignalled)
+        return SkyStatus::failure("frame export: frame ids must increase (timeline semaphore)", VK_ERROR_UNKNOWN);
+    SKY_TRY(waitSlot(ctx, e, slot));
+
+    VkCommandBuffer cmd = e.commands[slot];
+    VK_TRY(vkResetCommandBuffer(cmd, 0));
+    VkCommandBufferBeginInfo begin = {VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_TRY(vkBeginCommandBuffer(cmd, &begin));
+
+    // Ownership of the exported images: they are handed to the importers (VK_QUEUE_FAMILY_EXTERNAL) in
+    // GENERAL layout after each copy and taken back before the next; layout changes are separate barriers
+    // so that release and acquire never transition (the importers acquire GENERAL -> GENERAL).
+    const bool withShadow = shadowSize > 0;
+    const uint32_t family = ctx.queueFamily, external = VK_QUEUE_FAMILY_EXTERNAL, ignored = VK_QUEUE_FAMILY_IGNORED;
+    const VkPipelineStageFlags2 transfer = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, all = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    const VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL, srcOpt = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                        dstOpt = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    struct Pair
+    {
+        VkImage source;
+        ExportedImage* target;
+    };
+    std::vector<Pair> pairs = {{r.displayImage.image, &e.frames[slot]}};
+    if (withShadow)
+        pairs.push_back({r.shadowPass.image.image, &e.shadows[slot]});
+
+    std::vector<VkImageMemoryBarrier2> acquire, toTransfer, toGeneral, release;
+    for (const Pair& p : pairs)
+    {
+        // The renderer's images: its last writes (compute, transfer) before our reads.
+        toTransfer.push_back(imageBarrier(p.source, {all, VK_ACCESS_2_MEMORY_WRITE_BIT, general, ignored},
+                                          {transfer, VK_ACCESS_2_TRANSFER_READ_BIT, srcOpt, ignored}));
+        // Our reads before the renderer's next writes (write-after-read on the same queue).
+        toGeneral.push_back(imageBarrier(p.source, {transfer, VK_ACCESS_2_NONE, srcOpt, ignored},
+                                         {all, VK_ACCESS_2_NONE, general, ignored}));
+        if (p.target->general)
+        {
+            acquire.push_back(imageBarrier(p.target->image, {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, general, external},
+                                           {transfer, VK_ACCESS_2_NONE, general, family}));
+            toTransfer.push_back(imageBarrier(p.target->image, {transfer, VK_ACCESS_2_NONE, general, ignored},
+                                              {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored}));
+        }
+        else  // first use: nothing to keep, nothing owned elsewhere yet
+            toTransfer.push_back(imageBarrier(p.target->image, {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                                                                VK_IMAGE_LAYOUT_UNDEFINED, ignored},
+                                              {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored}));
+        p.target->general = true;
+        toGeneral.push_back(imageBarrier(p.target->image, {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored},
+                                         {all, VK_ACCESS_2_MEMORY_READ_BIT, general, ignored}));
+        release.push_back(imageBarrier(p.target->image, {all, VK_ACCESS_2_NONE, general, family},
+                                       {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, general, external}));
+    }
+
+    if (!acquire.empty())
+        barriers(cmd, acquire);
+    barriers(cmd, toTransfer);
+    VkImageCopy copy = {};
+    copy.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.dstSubresource = copy.srcSubresource;
+    copy.extent = {frame.width, frame.height, 1};
+    vkCmdCopyImage(cmd, r.displayImage.image, srcOpt, e.frames[slot].image, dstOpt, 1, &copy);
+    if (withShadow)
+    {
+        // Same size, NEAREST: an exact half -> float conversion of the red channel (transmittance).
+        VkImageBlit blit = {};
+        blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        blit.dstSubresource = blit.srcSubresource;
+        blit.srcOffsets[1] = {int32_t(shadowSize), int32_t(shadowSize), 1};
+        blit.dstOffsets[1] = blit.srcOffsets[1];
+        vkCmdBlitImage(cmd, r.shadowPass.image.image, srcOpt, e.shadows[slot].image, dstOpt, 1, &blit,
+                       VK_FILTER_NEAREST);
+    }
+    barriers(cmd, toGeneral);
+    barriers(cmd, release);
+    VK_TRY(vkEndCommandBuffer(cmd));
+
+    VkTimelineSemaphoreSubmitInfo timelineInfo = {VK_STRUCTURE_TYPE_TIMELINE_SEMAPHORE_SUBMIT_INFO};
+    timelineInfo.signalSemaphoreValueCount = 1;
+    timelineInfo.pSignalSemaphoreValues = &frameId;
+    VkSubmitInfo submit = {VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    if (e.timeline)
+    {
+        submit.pNext = &timelineInfo;
+        submit.signalSemaphoreCount = 1;
+        submit.pSignalSemaphores = &e.timeline;
+    }
+    VK_TRY(vkQueueSubmit(ctx.queue, 1, &submit, e.fences[slot]));
+    e.fencePending[slot] = true;
+    if (e.timeline)
+    {
+        e.lastSignalled = frameId;
+        return SkyStatus::success();  // importers wait on the semaphore
+    }
+    return waitSlot(ctx, e, slot);  // no exportable semaphore: complete before the ring publishes the slot
+}
+
+bool describeFrameExport(Renderer& r, const FrameExport& e, nlohmann::json& description, std::vector<int>& fds,
+                         std::string& error)
+{
+    const Context& ctx = r.ctx;
+    fds.clear();
+    description = nlohmann::json::object();
+    if (!ctx.getMemoryFd || e.frames.empty())
+    {
+        error = "frame export is not set up (needs " + std::string(VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME) + ")";
+        return false;
+    }
+    auto fail = [&](const std::string& what, VkResult res) {
+        for (int fd : fds)
+            close(fd);
+        fds.clear();
+        error = what + " failed: " + vkResultName(res);
+        return false;
+    };
+    auto exportMemory = [&](const ExportedImage& image) {
+        VkMemoryGetFdInfoKHR info = {VK_STRUCTURE_TYPE_MEMORY_GET_FD_INFO_KHR};
+        info.memory = image.memory;
+        info.handleType = kMemoryHandle;
+        int fd = -1;
+        VkResult res = ctx.getMemoryFd(ctx.device, &info, &fd);
+        if (res == VK_SUCCESS)
+            fds.push_back(fd);
+        return res;
+    };
+    nlohmann::json images = nlohmann::json::array();
+    for (uint32_t i = 0; i < e.slots; ++i)
+    {
+        nlohmann::json entry = imageJson(e.frames[i]);
+        entry["shadow"] = e.shadows.empty() ? nlohmann::json(nullptr) : imageJson(e.shadows[i]);
+        images.push_back(std::move(entry));
+    }
+    for (const ExportedImage& image : e.frames)
+        if (VkResult res = exportMemory(image); res != VK_SUCCESS)
+            return fail("vkGetMemoryFdKHR (" + image.name + ")", res);
+    for (const ExportedImage& image : e.shadows)
+        if (VkResult res = exportMemory(image); res != VK_SUCCESS)
+            return fail("vkGetMemoryFdKHR (" + image.name + ")", res);
+    if (e.timeline)
+    {
+        VkSemaphoreGetFdInfoKHR info = {VK_STRUCTURE_TYPE_SEMAPHORE_GET_FD_INFO_KHR};
+        info.semaphore = e.timeline;
+        info.handleType = kSemaphoreHandle;
+        int fd = -1;
+        VkResult res = ctx.getSemaphoreFd(ctx.device, &info, &fd);
+        if (res != VK_SUCCESS)
+            return fail("vkGetSemaphoreFdKHR", res);
+        fds.push_back(fd);
+    }
+    description["images"] = std::move(images);
+    description["timeline_semaphore"] = e.timeline != VK_NULL_HANDLE;
+    description["device_uuid"] = hex(ctx.deviceUUID, VK_UUID_SIZE);
+    description["driver_uuid"] = hex(ctx.driverUUID, VK_UUID_SIZE);
+    error.clear();
+    return true;
+}
+
+}  // namespace sky

@@ -1,0 +1,302 @@
+// SPDX-License-Identifier: MIT
+#include "skyservice/service/control_loop.h"
+
+#include "skyservice/earth/geodesy.h"
+#include "skyservice/service/log.h"
+#include "skyservice/sky/ephemeris.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <unistd.h>
+
+namespace sky
+{
+namespace
+{
+
+nlohmann::json viewJson(const ViewRequest& v)
+{
+    return {{"lat", v.pose.latDeg},       {"lon", v.pose.lonDeg},     {"alt", v.pose.altitudeM},
+            {"heading", v.pose.headingDeg}, {"pitch", v.pose.pitchDeg}, {"roll", v.pose.rollDeg},
+            {"fov", v.fovYDeg},           {"width", v.width},         {"height", v.height}};
+}
+
+/// Value at quantile q of `values` (nearest rank), 0 for none.
+double quantile(std::vector<double> values, double q)
+{
+    if (values.empty())
+        return 0;
+    auto k = size_t(std::min(double(values.size() - 1), std::ceil(q * double(values.size())) - 1));
+    std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(k), values.end());
+    return values[k];
+}
+
+}  // namespace
+
+ControlSocketServer::Handlers ControlLoop::handlers()
+{
+    ControlSocketServer::Handlers h;
+    h.connected = [this](ClientId client) {
+        clients_[client] = Client{};
+        SKY_LOG_INFO("client %llu connected (uid %u)", (unsigned long long)client, c_.server->peerUid(client));
+    };
+    h.line = [this](ClientId client, std::string_view line) { onLine(client, line); };
+    h.disconnected = [this](ClientId client) {
+        auto it = clients_.find(client);
+        SKY_LOG_INFO("client %llu (%s) disconnected", (unsigned long long)client,
+                     it != clients_.end() && !it->second.name.empty() ? it->second.name.c_str() : "unnamed");
+        clients_.erase(client);
+        std::lock_guard<std::mutex> lock(c_.state->mutex);
+        std::erase_if(c_.state->files, [client](const FilesSubscription& f) { return f.client == client; });
+    };
+    return h;
+}
+
+void ControlLoop::sendPendingReplies()
+{
+    std::deque<PendingReply> replies;
+    {
+        std::lock_guard<std::mutex> lock(c_.state->mutex);
+        replies.swap(c_.state->replies);
+    }
+    for (PendingReply& r : replies)
+    {
+        if (clients_.count(r.client))
+            c_.server->send(r.client, r.line, r.fds);
+        for (int fd : r.fds)  // the server dups what it sends; these copies are ours
+            ::close(fd);
+    }
+}
+
+void ControlLoop::sendError(ClientId client, const nlohmann::json& id, const std::string& code,
+                            const std::string& message, const std::string& field)
+{
+    ProtocolError e;
+    e.code = code;
+    e.message = message;
+    e.field = field;
+    e.id = id;
+    SKY_LOG_DEBUG("client %llu: %s: %s", (unsigned long long)client, code.c_str(), message.c_str());
+    c_.server->send(client, errorReply(e));
+}
+
+void ControlLoop::onLine(ClientId client, std::string_view line)
+{
+    Request request;
+    ProtocolError error;
+    if (!parseRequest(line, c_.limits, request, error))
+    {
+        SKY_LOG_DEBUG("client %llu: %s: %s", (unsigned long long)client, error.code.c_str(), error.message.c_str());
+        c_.server->send(client, errorReply(error));
+        return;
+    }
+    Client& state = clients_[client];
+    if (!state.hello && request.type != RequestType::Hello)
+    {
+        sendError(client, request.id, "not_hello", "the first request must be hello");
+        return;
+    }
+    dispatch(client, request);
+}
+
+void ControlLoop::dispatch(ClientId client, const Request& request)
+{
+    ServiceState& s = *c_.state;
+    switch (request.type)
+    {
+    case RequestType::Hello:
+        if (request.protocol != kProtocolVersion)
+        {
+            sendError(client, request.id, "bad_version", "this service speaks protocol 1", "protocol");
+            return;
+        }
+        clients_[client].hello = true;
+        clients_[client].name = request.clientName;
+        c_.server->send(client, replyWithId(request, {{"type", "hello"},
+                                                     {"protocol", kProtocolVersion},
+                                                     {"service", "skyservice 0.1"},
+                                                     {"device", c_.deviceName},
+                                                     {"max_width", c_.limits.maxWidth},
+                                                     {"max_height", c_.limits.maxHeight}}));
+        return;
+    case RequestType::SetView: setView(client, request); return;
+    case RequestType::SetTime: setTime(client, request); return;
+    case RequestType::LoadWeather:
+        if (request.path.empty() || request.path[0] != '/')
+        {
+            sendError(client, request.id, "out_of_range", "path must be absolute", "path");
+            return;
+        }
+        SKY_LOG_INFO("load_weather %s (client %llu)", request.path.c_str(), (unsigned long long)client);
+        c_.loader->enqueue(request.path);
+        c_.server->send(client, okReply(request, {{"queued", true}}));
+        return;
+    case RequestType::Subscribe: subscribe(client, request); return;
+    case RequestType::Render:
+    {
+        uint64_t id = 0;
+        {
+            std::lock_guard<std::mutex> lock(s.mutex);
+            id = s.framesStarted + 1;  // the next frame to begin takes this request's view into account
+            s.renderWantedUpTo = std::max(s.renderWantedUpTo, id);
+        }
+        s.wake.notify_all();
+        c_.server->send(client, okReply(request, {{"frame_id", id}}));
+        return;
+    }
+    case RequestType::Status:
+        c_.server->send(client, replyWithId(request, statusJson()));
+        return;
+    case RequestType::WriteFiles:
+    {
+        if (request.path.empty())
+        {
+            sendError(client, request.id, "missing_field", "write_files needs a prefix", "prefix");
+            return;
+        }
+        {
+            std::lock_guard<std::mutex> lock(s.mutex);
+            s.jobs.push_back(RenderJob{RenderJob::WriteFiles, client, request.id, request.path});
+        }
+        s.wake.notify_all();
+        return;  // the render thread replies once the files are written
+    }
+    }
+}
+
+void ControlLoop::setView(ClientId client, const Request& request)
+{
+    ServiceState& s = *c_.state;
+    std::lock_guard<std::mutex> lock(s.mutex);
+    ViewRequest v = s.view;
+    const ViewUpdate& u = request.view;
+    if (u.lat) v.pose.latDeg = *u.lat;
+    if (u.lon) v.pose.lonDeg = *u.lon;
+    if (u.alt) v.pose.altitudeM = *u.alt;
+    if (u.heading) v.pose.headingDeg = *u.heading;
+    if (u.pitch) v.pose.pitchDeg = *u.pitch;
+    if (u.roll) v.pose.rollDeg = *u.roll;
+    if (u.fov) v.fovYDeg = *u.fov;
+    if (u.width) v.width = *u.width;
+    if (u.height) v.height = *u.height;
+    std::string why;
+    // parseRequest checked each field's range; this is the renderer's own check of the whole pose.
+    if (!validateEyePose(v.pose, why))
+    {
+        sendError(client, request.id, "out_of_range", why, "view");
+        return;
+    }
+    if (v.width > c_.limits.maxWidth || v.height > c_.limits.maxHeight || v.width < 8 || v.height < 8)
+    {
+        sendError(client, request.id, "out_of_range", "image size outside the service's limits",
+                  v.width > c_.limits.maxWidth || v.width < 8 ? "view.width" : "view.height");
+        return;
+    }
+    s.view = v;
+    c_.server->send(client, okReply(request));
+}
+
+void ControlLoop::setTime(ClientId client, const Request& request)
+{
+    ServiceState& s = *c_.state;
+    int64_t unixTimeS = 0;
+    if (request.timeIso)
+    {
+        std::string why;
+        if (!parseIso8601Utc(*request.timeIso, unixTimeS, why))
+        {
+            sendError(client, request.id, "out_of_range", "time: " + why, "time");
+            return;
+        }
+    }
+    if (!request.timeIso && !request.rate)
+    {
+        sendError(client, request.id, "missing_field", "set_time needs time and/or rate", "time");
+        return;
+    }
+    {
+        std::lock_guard<std::mutex> lock(s.mutex);
+        SteadyClock::time_point now = SteadyClock::now();
+        double base = request.timeIso ? double(unixTimeS) : s.clock.nowUnixS(now);
+        s.clock.baseUnixS = base;
+        s.clock.baseReal = now;
+        if (request.rate)
+            s.clock.rate = *request.rate;
+    }
+    c_.server->send(client, okReply(request));
+}
+
+void ControlLoop::subscribe(ClientId client, const Request& request)
+{
+    ServiceState& s = *c_.state;
+    switch (request.transport)
+    {
+    case Transport::Shm:
+        c_.server->send(client, replyWithId(request, {{"type", "subscribed"},
+                                                     {"transport", "shm"},
+                                                     {"shm_name", c_.ring->name()},
+                                                     {"slots", c_.ring->slotCount()},
+                                                     {"total_bytes", c_.ring->totalBytes()}}));
+        return;
+    case Transport::Vulkan:
+        {
+            std::lock_guard<std::mutex> lock(s.mutex);
+            s.jobs.push_back(RenderJob{RenderJob::SubscribeVulkan, client, request.id, ""});
+        }
+        s.wake.notify_all();
+        return;
+    case Transport::Files:
+    {
+        std::error_code ec;
+        if (request.path.empty() || !std::filesystem::is_directory(request.path, ec))
+        {
+            sendError(client, request.id, "failed", "dir '" + request.path + "' is not a folder", "dir");
+            return;
+        }
+        {
+            std::lock_guard<std::mutex> lock(s.mutex);
+            s.files.push_back(FilesSubscription{client, request.path, std::max(request.every, 1u), request.fileFormat});
+        }
+        c_.server->send(client, okReply(request));
+        return;
+    }
+    }
+}
+
+nlohmann::json ControlLoop::statusJson()
+{
+    ServiceState& s = *c_.state;
+    std::lock_guard<std::mutex> lock(s.mutex);
+    nlohmann::json weather = {{"source", s.weather.source}, {"valid_time", nullptr}, {"last_error", nullptr}};
+    if (s.weather.timeline && !s.weather.timeline->empty())
+    {
+        weather["valid_time"] = formatIso8601Utc(s.weather.timeline->firstTimeUnixS());
+        weather["valid_time_last"] = formatIso8601Utc(s.weather.timeline->lastTimeUnixS());
+    }
+    if (!s.weather.lastError.empty())
+        weather["last_error"] = s.weather.lastError;
+    double uptime = std::chrono::duration<double>(SteadyClock::now() - c_.startedAt).count();
+    double simNow = s.clock.nowUnixS();
+    return {{"type", "status"},
+            {"frame_id", s.lastFrameId},
+            {"frames_rendered", s.framesRendered},
+            {"frame_ms",
+             {{"last", s.frameMs.empty() ? 0.0 : s.frameMs[(s.frameMsNext + s.frameMs.size() - 1) % s.frameMs.size()]},
+              {"median", quantile(s.frameMs, 0.5)},
+              {"p95", quantile(s.frameMs, 0.95)}}},
+            {"device", c_.deviceName},
+            {"driver", c_.driver},
+            {"device_memory_bytes", s.deviceMemoryBytes},
+            {"view", viewJson(s.view)},
+            {"time", formatIso8601Utc(int64_t(std::floor(simNow)))},
+            {"time_unix_s", simNow},
+            {"rate", s.clock.rate},
+            {"render_rate_hz", s.renderRateHz},
+            {"weather", weather},
+            {"last_render_error", s.lastRenderError.empty() ? nlohmann::json() : nlohmann::json(s.lastRenderError)},
+            {"clients", c_.server->clientCount()},
+            {"uptime_s", uptime}};
+}
+
+}  // namespace sky

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: MIT
+// The control socket's request dispatch (skyservice/ipc/PROTOCOL.md): one line in, one reply out, on
+// the thread that calls ControlSocketServer::poll. Requests that change the next frame are applied
+// under ServiceState's mutex, all fields or none; requests that need the renderer (write_files,
+// subscribe vulkan) become RenderJobs whose replies come back through ServiceState::replies.
+#pragma once
+
+#include "skyservice/ipc/control_socket.h"
+#include "skyservice/ipc/protocol.h"
+#include "skyservice/ipc/shm_ring.h"
+#include "skyservice/service/service_state.h"
+#include "skyservice/service/weather_loader.h"
+
+#include <string>
+#include <unordered_map>
+
+namespace sky
+{
+
+struct ControlContext
+{
+    ControlSocketServer* server = nullptr;
+    ServiceState* state = nullptr;
+    WeatherLoader* loader = nullptr;
+    const ShmRingWriter* ring = nullptr;
+    ProtocolLimits limits;
+    std::string deviceName, driver;
+    SteadyClock::time_point startedAt = SteadyClock::now();
+};
+
+class ControlLoop
+{
+public:
+    explicit ControlLoop(const ControlContext& context) : c_(context) {}
+
+    /// The handlers to pass to ControlSocketServer::poll.
+    ControlSocketServer::Handlers handlers();
+    /// Sends the replies the render thread queued (call after each poll).
+    void sendPendingReplies();
+    /// The status reply's body (without id), also logged on SIGHUP.
+    nlohmann::json statusJson();
+
+private:
+    struct Client
+    {
+        bool hello = false;
+        std::string name;
+    };
+
+    void onLine(ClientId client, std::string_view line);
+    void dispatch(ClientId client, const Request& request);
+    void sendError(ClientId client, const nlohmann::json& id, const std::string& code, const std::string& message,
+                   const std::string& field = "");
+    void setView(ClientId client, const Request& request);
+    void setTime(ClientId client, const Request& request);
+    void subscribe(ClientId client, const Request& request);
+
+    ControlContext c_;
+    std::unordered_map<ClientId, Client> clients_;
+};
+
+}  // namespace sky

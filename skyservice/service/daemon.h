@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: MIT
+// `skyservice` without a subcommand: the long-running service (DESIGN §5). Wires the parts together:
+// config -> renderer -> shared-memory ring -> control socket, then the threads (signals, weather
+// loader and watcher, render loop) until SIGTERM/SIGINT. SIGHUP reloads the config file.
+#pragma once
+
+#include <string>
+
+namespace sky
+{
+
+/// Command-line options; each non-empty one overrides the config file's field.
+struct DaemonOptions
+{
+    std::string config;      ///< TOML file ([service] plus renderer sections); "" = defaults
+    std::string socket;      ///< service.socket_path
+    std::string weatherDir;  ///< service.weather_dir
+    std::string logLevel;    ///< service.log_level
+    std::string device;      ///< service.device
+    bool validate = false;   ///< service.validate = true
+};
+
+/// Runs until SIGTERM/SIGINT. Returns 0 after a clean shutdown, 1 on a runtime failure (device, socket,
+/// shared memory, leaked device memory, validation messages), 2 for a bad config or command line.
+int runDaemon(const DaemonOptions& options);
+
+}  // namespace sky

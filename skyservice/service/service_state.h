@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: MIT
+// What the control loop (socket thread) and the render loop (render thread) share, under one mutex:
+// the inputs of the next frame (view, time, weather, quality, requests) and the outputs of the last
+// (frame ids, frame times, memory). The render thread copies the inputs at the start of a frame, so a
+// set_view or a weather swap never lands in the middle of one.
+#pragma once
+
+#include "skyservice/ipc/control_socket.h"
+#include "skyservice/render/render_types.h"
+#include "weather_ingest/weather_timeline.h"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace sky
+{
+
+using SteadyClock = std::chrono::steady_clock;
+
+/// Simulated UTC: base time plus rate * real seconds since the base was set.
+struct SimClock
+{
+    double baseUnixS = 0;
+    SteadyClock::time_point baseReal = SteadyClock::now();
+    double rate = 0;
+
+    double nowUnixS(SteadyClock::time_point now = SteadyClock::now()) const
+    {
+        return baseUnixS + rate * std::chrono::duration<double>(now - baseReal).count();
+    }
+};
+
+/// The weather frames are rendered with: null timeline = the built-in scene.
+struct WeatherState
+{
+    std::shared_ptr<const WeatherTimeline> timeline;
+    std::string source = "builtin";  ///< "builtin" or the file
+    uint64_t version = 1;            ///< +1 per swap
+    std::string lastError;           ///< the last refused file and why ("" after a good load)
+};
+
+/// `subscribe` with transport files: every N frames into dir.
+struct FilesSubscription
+{
+    ClientId client = 0;  ///< 0 = from the config file
+    std::string dir;
+    uint32_t every = 1;
+    std::string format = "png";
+};
+
+/// Work the render thread does for a request; its reply goes back through `replies`.
+struct RenderJob
+{
+    enum Kind
+    {
+        WriteFiles,       ///< write the latest frame to `path` (a prefix)
+        SubscribeVulkan,  ///< create the frame export lazily, reply with its description and fds
+    } kind = WriteFiles;
+    ClientId client = 0;
+    nlohmann::json requestId;
+    std::string path;
+};
+
+/// A reply line made on the render thread, sent by the control loop (the only thread that sends).
+struct PendingReply
+{
+    ClientId client = 0;
+    std::string line;
+    std::vector<int> fds;  ///< owned: closed by the control loop after sending
+};
+
+struct ServiceState
+{
+    std::mutex mutex;
+    std::condition_variable wake;  ///< the render thread waits on it
+
+    // Inputs of the next frame.
+    ViewRequest view;              ///< pose, fov, size, shadow-map settings
+    SimClock clock;
+    WeatherState weather;
+    QualitySettings quality;
+    double renderRateHz = 0;
+    uint64_t renderWantedUpTo = 0; ///< render on demand until this frame id has started
+    std::vector<FilesSubscription> files;
+    std::deque<RenderJob> jobs;
+    bool stop = false;
+
+    // Outputs.
+    uint64_t framesStarted = 0;    ///< id of the last frame begun (ids start at 1)
+    uint64_t lastFrameId = 0;      ///< id of the last frame published (0 = none yet)
+    uint64_t framesRendered = 0;
+    std::vector<double> frameMs;   ///< the last kFrameHistory frame times (ring), ms
+    size_t frameMsNext = 0;
+    uint64_t deviceMemoryBytes = 0;
+    std::string lastRenderError;
+    std::deque<PendingReply> replies;
+
+    static constexpr size_t kFrameHistory = 128;
+
+    void recordFrameMs(double ms)
+    {
+        if (frameMs.size() < kFrameHistory)
+            frameMs.push_back(ms);
+        else
+            frameMs[frameMsNext] = ms;
+        frameMsNext = (frameMsNext + 1) % kFrameHistory;
+    }
+};
+
+}  // namespace sky

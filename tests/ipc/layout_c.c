@@ -1,0 +1,22 @@
+/* SPDX-License-Identifier: MIT */
+/* The ring's layout as a C compiler sees it (C clients include shm_layout.h): compared with C++. */
+#include <stddef.h>
+
+#include "skyservice/ipc/shm_layout.h"
+
+size_t skyTestCLayout(int what);
+
+size_t skyTestCLayout(int what)
+{
+    switch (what)
+    {
+    case 0: return sizeof(SkyShmHeader);
+    case 1: return sizeof(SkyShmSlot);
+    case 2: return sizeof(SkyShmView);
+    case 3: return sizeof(SkyShmShadowGeoRef);
+    case 4: return offsetof(SkyShmHeader, latest_frame_id);
+    case 5: return offsetof(SkyShmSlot, shadow);
+    case 6: return offsetof(SkyShmSlot, image_offset);
+    default: return 0;
+    }
+}

@@ -1,0 +1,331 @@
+// SPDX-License-Identifier: MIT
+// The control socket server (skyservice/ipc/control_socket.h): line framing, bounds, slow and
+// flooding clients, fd passing, many clients, stale and live socket files, permissions.
+#include "skyservice/ipc/control_socket.h"
+#include "tests/ipc/ipc_test_util.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <chrono>
+#include <fcntl.h>
+#include <memory>
+#include <mutex>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <thread>
+
+namespace sky
+{
+namespace
+{
+
+using test::RawClient;
+using Read = RawClient::Read;
+
+/// A server in its own thread answering "echo <line>" (and a few special lines) like the service does:
+/// handlers run on the poll thread, which measures its longest poll() round.
+struct EchoServer
+{
+    ControlSocketServer server;
+    std::thread thread;
+    std::atomic<bool> stop{false};
+    std::atomic<int> connected{0}, disconnected{0};
+    std::atomic<int64_t> longestRoundUs{0};
+    std::atomic<size_t> clients{0};
+
+    bool start(const std::string& path, const ControlSocketLimits& limits = {}, uint32_t mode = 0600)
+    {
+        std::string error;
+        if (!server.listen(path, mode, limits, error))
+        {
+            ADD_FAILURE() << error;
+            return false;
+        }
+        thread = std::thread([this] { run(); });
+        return true;
+    }
+    void run()
+    {
+        ControlSocketServer::Handlers h;
+        h.connected = [this](ClientId) { ++connected; };
+        h.disconnected = [this](ClientId) { ++disconnected; };
+        h.line = [this](ClientId id, std::string_view line) {
+            if (line == "big")  // a 16 KiB reply: a client that never reads fills its queue fast
+                server.send(id, std::string(16384, 'b'));
+            else if (line == "fd")
+            {
+                int fd = ::memfd_create("sky-test", MFD_CLOEXEC);
+                if (::write(fd, "frame memory", 12) != 12)
+                    ADD_FAILURE() << "memfd write";
+                server.send(id, "{\"type\":\"fd\"}", {fd});
+                ::close(fd);  // the server keeps its own dup until it is sent
+            }
+            else if (line == "uid")
+                server.send(id, "uid " + std::to_string(server.peerUid(id)));
+            else
+                server.send(id, "echo " + std::string(line));
+        };
+        while (!stop.load())
+        {
+            const auto t0 = std::chrono::steady_clock::now();
+            server.poll(20, h);
+            const auto us = std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - t0);
+            longestRoundUs = std::max<int64_t>(longestRoundUs.load(), us.count());
+            clients = server.clientCount();
+        }
+    }
+    ~EchoServer()
+    {
+        stop = true;
+        server.wake();
+        if (thread.joinable())
+            thread.join();
+        server.close();
+    }
+};
+
+bool waitFor(const std::function<bool()>& condition, int timeoutMs = 3000)
+{
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeoutMs);
+    while (!condition())
+    {
+        if (std::chrono::steady_clock::now() > deadline)
+            return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    return true;
+}
+
+TEST(ControlSocket, LinesSplitAcrossWritesAndSeveralInOneWrite)
+{
+    test::TempDir dir;
+    EchoServer s;
+    ASSERT_TRUE(s.start(dir.file("s.sock")));
+    RawClient c(dir.file("s.sock"));
+    ASSERT_TRUE(c.connected());
+    ASSERT_TRUE(c.sendAll("hel"));
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    ASSERT_TRUE(c.sendAll("lo wor"));
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    ASSERT_TRUE(c.sendAll("ld\nfirst\nsecond\n\nthird\n"));
+    std::string line;
+    for (const char* expected : {"echo hello world", "echo first", "echo second", "echo ", "echo third"})
+    {
+        ASSERT_EQ(c.readLine(line), Read::Line);
+        EXPECT_EQ(line, expected);
+    }
+    EXPECT_EQ(c.readLine(line, 100), Read::Timeout) << "one reply per line, no more";
+}
+
+TEST(ControlSocket, OversizedLineIsAnsweredTooLongAndTheConnectionContinues)
+{
+    test::TempDir dir;
+    EchoServer s;
+    ASSERT_TRUE(s.start(dir.file("s.sock")));
+    RawClient c(dir.file("s.sock"));
+    // 65535 bytes + newline is exactly the limit; one more byte is too long.
+    ASSERT_TRUE(c.sendAll(std::string(65535, 'a') + "\n" + std::string(65536, 'x') + "\nafter\n"));
+    std::string line;
+    ASSERT_EQ(c.readLine(line), Read::Line);
+    EXPECT_EQ(line.size(), 5u + 65535u);
+    ASSERT_EQ(c.readLine(line), Read::Line);
+    const nlohmann::json j = nlohmann::json::parse(line);
+    EXPECT_EQ(j["type"], "error");
+    EXPECT_EQ(j["code"], "too_long");
+    EXPECT_NE(j["message"].get<std::string>().find("65536"), std::string::npos);
+    ASSERT_EQ(c.readLine(line), Read::Line);
+    EXPECT_EQ(line, "echo after") << "the rest of the long line was skipped, the next one served";
+    // A huge line sent in pieces is answered once, as soon as it passes the limit.
+    ASSERT_TRUE(c.sendAll(std::string(200000, 'y')));
+    ASSERT_EQ(c.readLine(line), Read::Line);
+    EXPECT_NE(line.find("too_long"), std::string::npos);
+    ASSERT_TRUE(c.sendAll(std::string(100000, 'y') + "\nok\n"));
+    ASSERT_EQ(c.readLine(line), Read::Line);
+    EXPECT_EQ(line, "echo ok");
+}
+
+TEST(ControlSocket, EightTooLongInARowDisconnectsSevenDoNot)
+{
+    test::TempDir dir;
+    EchoServer s;
+    ASSERT_TRUE(s.start(dir.file("s.sock")));
+    const std::string longLine = std::string(70000, 'z') + "\n";
+    RawClient c(dir.file("s.sock"));
+    std::string seven;
+    for (int i = 0; i < 7; ++i)
+        seven += longLine;
+    ASSERT_TRUE(c.sendAll(seven + "reset\n" + seven + "still here\n"));
+    std::string line;
+    int tooLong = 0;
+    while (c.readLine(line) == Read::Line && line != "echo still here")
+        tooLong += line.find("too_long") != std::string::npos;
+    EXPECT_EQ(line, "echo still here");
+    EXPECT_EQ(tooLong, 14);
+
+    RawClient d(dir.file("s.sock"));
+    (void)d.sendAll(seven + longLine);  // may fail at the end: the server hangs up after the 8th
+    int answered = 0;
+    Read r;
+    while ((r = d.readLine(line)) == Read::Line)
+        ++answered;
+    EXPECT_EQ(r, Read::Closed);
+    EXPECT_EQ(answered, 8);
+    EXPECT_TRUE(waitFor([&] { return s.disconnected.load() == 1; }));
+}
+
+TEST(ControlSocket, AClientThatNeverReadsIsDisconnectedAndTheServerNeverBlocks)
+{
+    test::TempDir dir;
+    EchoServer s;
+    ASSERT_TRUE(s.start(dir.file("s.sock")));
+    RawClient lazy(dir.file("s.sock"));
+    RawClient busy(dir.file("s.sock"));
+    ASSERT_TRUE(waitFor([&] { return s.connected.load() == 2; }));
+    // 300 requests of 16 KiB replies: 4.8 MiB, far over the socket buffer plus the 1 MiB queue.
+    std::string requests;
+    for (int i = 0; i < 300; ++i)
+        requests += "big\n";
+    ASSERT_TRUE(lazy.sendAll(requests));
+    ASSERT_TRUE(waitFor([&] { return s.disconnected.load() == 1; })) << "the lazy client must be dropped";
+    std::string line;
+    ASSERT_TRUE(busy.sendAll("ping\n"));
+    ASSERT_EQ(busy.readLine(line, 1000), Read::Line);
+    EXPECT_EQ(line, "echo ping");
+    EXPECT_LT(s.longestRoundUs.load(), 500000) << "a poll round took " << s.longestRoundUs.load() << " us";
+    EXPECT_EQ(s.clients.load(), 1u);
+}
+
+TEST(ControlSocket, FileDescriptorsArriveUsable)
+{
+    test::TempDir dir;
+    EchoServer s;
+    ASSERT_TRUE(s.start(dir.file("s.sock")));
+    RawClient c(dir.file("s.sock"));
+    ASSERT_TRUE(c.sendAll("before\nfd\n"));
+    std::string line;
+    ASSERT_EQ(c.readLine(line), Read::Line);
+    EXPECT_EQ(line, "echo before");
+    ASSERT_EQ(c.readLine(line), Read::Line);
+    EXPECT_EQ(line, "{\"type\":\"fd\"}");
+    ASSERT_EQ(c.fds.size(), 1u);
+    char buffer[32] = {};
+    EXPECT_EQ(::pread(c.fds[0], buffer, sizeof buffer, 0), 12);
+    EXPECT_STREQ(buffer, "frame memory");
+    EXPECT_TRUE(::fcntl(c.fds[0], F_GETFD) & FD_CLOEXEC);
+}
+
+TEST(ControlSocket, ManyClientsAtOnce)
+{
+    test::TempDir dir;
+    EchoServer s;
+    ASSERT_TRUE(s.start(dir.file("s.sock")));
+    std::vector<std::unique_ptr<RawClient>> clients;
+    for (int i = 0; i < 12; ++i)
+    {
+        clients.push_back(std::make_unique<RawClient>(dir.file("s.sock")));
+        ASSERT_TRUE(clients.back()->connected());
+    }
+    for (int i = 0; i < 12; ++i)
+        ASSERT_TRUE(clients[size_t(i)]->sendAll("client " + std::to_string(i) + "\n"));
+    for (int i = 0; i < 12; ++i)
+    {
+        std::string line;
+        ASSERT_EQ(clients[size_t(i)]->readLine(line), Read::Line);
+        EXPECT_EQ(line, "echo client " + std::to_string(i));
+    }
+    EXPECT_TRUE(waitFor([&] { return s.clients.load() == 12; }));
+    clients.resize(4);
+    EXPECT_TRUE(waitFor([&] { return s.disconnected.load() == 8; }));
+    std::string line;
+    ASSERT_TRUE(clients[0]->sendAll("uid\n"));
+    ASSERT_EQ(clients[0]->readLine(line), Read::Line);
+    EXPECT_EQ(line, "uid " + std::to_string(::getuid()));
+}
+
+TEST(ControlSocket, ClientsOverTheLimitAreToldBusy)
+{
+    test::TempDir dir;
+    EchoServer s;
+    ControlSocketLimits limits;
+    limits.maxClients = 2;
+    ASSERT_TRUE(s.start(dir.file("s.sock"), limits));
+    RawClient a(dir.file("s.sock")), b(dir.file("s.sock"));
+    ASSERT_TRUE(waitFor([&] { return s.connected.load() == 2; }));
+    RawClient c(dir.file("s.sock"));
+    std::string line;
+    ASSERT_EQ(c.readLine(line), Read::Line);
+    EXPECT_NE(line.find("busy"), std::string::npos) << line;
+    EXPECT_EQ(c.readLine(line), Read::Closed);
+    ASSERT_TRUE(a.sendAll("still\n"));
+    ASSERT_EQ(a.readLine(line), Read::Line);
+    EXPECT_EQ(line, "echo still");
+}
+
+TEST(ControlSocket, StaleSocketFileIsReusedLiveOneRefusedModeApplied)
+{
+    test::TempDir dir;
+    const std::string path = dir.file("s.sock");
+    {
+        // A crashed service leaves its socket file: bound, then closed without unlink.
+        int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+        sockaddr_un a{};
+        a.sun_family = AF_UNIX;
+        std::strncpy(a.sun_path, path.c_str(), sizeof a.sun_path - 1);
+        ASSERT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+        ::close(fd);
+    }
+    struct stat st{};
+    ASSERT_EQ(::stat(path.c_str(), &st), 0);
+    EchoServer s;
+    ASSERT_TRUE(s.start(path));
+    ASSERT_EQ(::stat(path.c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 0777, 0600u);
+    RawClient c(path);
+    std::string line;
+    ASSERT_TRUE(c.sendAll("hi\n"));
+    ASSERT_EQ(c.readLine(line), Read::Line);
+
+    ControlSocketServer second;
+    std::string error;
+    EXPECT_FALSE(second.listen(path, 0600, {}, error));
+    EXPECT_EQ(error, "another service is listening at " + path);
+    ASSERT_TRUE(c.sendAll("still served\n"));
+    ASSERT_EQ(c.readLine(line), Read::Line);
+    EXPECT_EQ(line, "echo still served") << "the refused listen must not disturb the live one";
+
+    const std::string file = dir.file("regular");
+    ::close(::open(file.c_str(), O_CREAT | O_WRONLY, 0600));
+    EXPECT_FALSE(second.listen(file, 0600, {}, error));
+    EXPECT_NE(error.find("not a socket"), std::string::npos) << error;
+    EXPECT_EQ(::stat(file.c_str(), &st), 0) << "a file that is not a socket is never removed";
+
+    ControlSocketServer third;
+    ASSERT_TRUE(third.listen(dir.file("group.sock"), 0660, {}, error)) << error;
+    ASSERT_EQ(::stat(dir.file("group.sock").c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 0777, 0660u);
+    third.close();
+    EXPECT_NE(::stat(dir.file("group.sock").c_str(), &st), 0) << "close unlinks the socket";
+}
+
+TEST(ControlSocket, WakeEndsAPollEarly)
+{
+    test::TempDir dir;
+    ControlSocketServer server;
+    std::string error;
+    ASSERT_TRUE(server.listen(dir.file("w.sock"), 0600, {}, error)) << error;
+    std::thread waker([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        server.wake();
+    });
+    const auto t0 = std::chrono::steady_clock::now();
+    server.poll(10000, {});
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    waker.join();
+    EXPECT_LT(ms, 5000.0);
+    EXPECT_FALSE(server.send(12345, "nobody"));
+}
+
+}  // namespace
+}  // namespace sky

@@ -1,0 +1,14 @@
+# End-to-end tests of the service (issue 6): each starts the real `skyservice` daemon as a child process
+# with a temporary config (tiny frames, quality "test", its own socket and shared-memory names) and
+# drives it through libskyclient and raw sockets. service.soak.* is the short CI soak;
+# tests/service/soak.sh runs a long one by hand.
+if(TARGET sky_service AND TARGET skyclient)
+    file(GLOB SKY_SERVICE_TEST_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/service/*.cpp)
+    add_executable(service_e2e_test ${SKY_SERVICE_TEST_SOURCES})
+    target_include_directories(service_e2e_test PRIVATE ${PROJECT_SOURCE_DIR})
+    target_compile_definitions(service_e2e_test PRIVATE SKY_SERVICE_BIN="$<TARGET_FILE:skyservice>")
+    target_compile_definitions(service_e2e_test PRIVATE SKY_PROJECT_DIR="${PROJECT_SOURCE_DIR}")
+    target_link_libraries(service_e2e_test PRIVATE skyclient sky_service sky_renderer sky_weather GTest::gtest_main sky_warnings)
+    add_dependencies(service_e2e_test skyservice)
+    gtest_discover_tests(service_e2e_test TEST_PREFIX service. PROPERTIES TIMEOUT 240)
+endif()

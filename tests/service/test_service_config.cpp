@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// The [service] section: the example config is complete and valid, and bad values are refused with
+// the file and the field named (no daemon needed).
+#include "skyservice/app/config_file.h"
+#include "skyservice/service/service_config.h"
+#include "tests/service/service_harness.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+using namespace sky;
+
+TEST(ServiceConfig, ExampleFileIsValidAndDocumentsTheDefaults)
+{
+    std::string path = std::string(SKY_PROJECT_DIR) + "/config/service.toml";
+    ServiceConfig c = defaultServiceConfig();
+    std::string error;
+    ASSERT_TRUE(loadServiceConfig(path, c, error)) << error;
+    ServiceConfig d = defaultServiceConfig();
+    // The example states the defaults (except the socket path, which it spells out).
+    EXPECT_EQ(c.renderRateHz, d.renderRateHz);
+    EXPECT_EQ(c.maxWidth, d.maxWidth);
+    EXPECT_EQ(c.shmSlots, d.shmSlots);
+    EXPECT_EQ(c.socketMode, 0600u);
+    EXPECT_EQ(c.quality, d.quality);
+    EXPECT_EQ(c.view.width, d.view.width);
+    EXPECT_EQ(c.timeUnixS, d.timeUnixS);
+    EXPECT_EQ(c.qualitySettings.maxViewSteps, d.qualitySettings.maxViewSteps);
+    // The renderer's reader accepts a file with a [service] section.
+    QualitySettings q;
+    EXPECT_TRUE(applyConfigFile(path, q, error)) << error;
+}
+
+TEST(ServiceConfig, BadValuesNameFileAndField)
+{
+    skytest::TempDir tmp;
+    struct Case
+    {
+        std::string text, field;
+    };
+    std::vector<Case> cases = {
+        {"[service]\nrender_rate_hz = -1\n", "service.render_rate_hz"},
+        {"[service]\nrender_rate_hz = \"fast\"\n", "service.render_rate_hz"},
+        {"[service]\nsocket_mode = 0o044\n", "service.socket_mode"},
+        {"[service]\nlog_level = \"chatty\"\n", "service.log_level"},
+        {"[service]\nno_such_key = 1\n", "service.no_such_key"},
+        {"[service]\nshm_slots = 9\n", "service.shm_slots"},
+        {"[service]\ntime = \"noon\"\n", "service.time"},
+        {"[service]\nquality = \"ultra\"\n", "service.quality"},
+        {"[service.view]\nlat = 95\n", "service.view.lat"},
+        {"[service.view]\nwidth = 10.5\n", "service.view.width"},
+        {"[service]\n[march]\nmax_view_steps = 2\n", "march.max_view_steps"},
+    };
+    for (const Case& k : cases)
+    {
+        std::string path = tmp.path + "/bad.toml";
+        std::ofstream(path) << k.text;
+        ServiceConfig c = defaultServiceConfig();
+        std::string error;
+        EXPECT_FALSE(loadServiceConfig(path, c, error)) << k.text;
+        EXPECT_NE(error.find("bad.toml"), std::string::npos) << error;
+        EXPECT_NE(error.find(k.field), std::string::npos) << k.text << " -> " << error;
+        EXPECT_EQ(c.renderRateHz, 30.0);  // untouched on failure
+    }
+    ServiceConfig c = defaultServiceConfig();
+    c.socketPath = "/tmp/x.sock";
+    c.view.width = 4000;
+    std::string error;
+    EXPECT_FALSE(checkServiceConfig(c, "f.toml", error));
+    EXPECT_NE(error.find("service.view.width"), std::string::npos) << error;
+}
