@@ -1,8 +1,8 @@
 # Geodesy, weather window, built-in weather (geo.*) and file outputs (out.*): CPU only, no device.
 add_executable(test_geo unit/test_geodesy.cpp unit/test_weather_window.cpp unit/test_builtin_weather.cpp)
 target_link_libraries(test_geo PRIVATE sky_renderer GTest::gtest_main sky_warnings)
-gtest_discover_tests(test_geo TEST_PREFIX "geo." DISCOVERY_TIMEOUT 30)
+gtest_discover_tests(test_geo TEST_PREFIX "geo." DISCOVERY_TIMEOUT 30 PROPERTIES LABELS cpu)
 
 add_executable(test_outputs unit/test_outputs.cpp)
 target_link_libraries(test_outputs PRIVATE sky_renderer GTest::gtest_main sky_warnings)
-gtest_discover_tests(test_outputs TEST_PREFIX "out." DISCOVERY_TIMEOUT 30)
+gtest_discover_tests(test_outputs TEST_PREFIX "out." DISCOVERY_TIMEOUT 30 PROPERTIES LABELS cpu)
