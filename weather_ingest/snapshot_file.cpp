@@ -320,7 +320,8 @@ bool parseSnapshotBytes(const void* data, size_t size, const std::string& name, 
     out.clear();
     const auto* bytes = static_cast<const uint8_t*>(data);
     uint8_t header[kHeaderBytes] = {};
-    std::memcpy(header, bytes, std::min(size, kHeaderBytes));
+    if (size > 0)  // an empty buffer may come with a null pointer, which memcpy must never get (UBSan)
+        std::memcpy(header, bytes, std::min(size, kHeaderBytes));
     const size_t skip = std::min(size, kHeaderBytes);
     return parseSnapshots(bytes + skip, nullptr, size, header, name, out, error);
 }
