@@ -46,6 +46,11 @@ struct FrameParams
     vec4 previousUp;        // xyz: previous camera up axis; w: its tan(fovY/2)
     vec4 previousForward;   // xyz: previous camera view axis; w: unused
     vec4 previousEye;       // xyz: previous eye position relative to the current eye (m); w: unused
+    // The weather window is centred on a lattice node near the eye, not on the eye
+    // (skyservice/earth/window_lattice.h): window-plane position = windowOffsetM.xy + the map position
+    // (m east, north of the eye) through windowAxes.
+    vec4 windowOffsetM;     // xy: the eye's position on the window plane (m); zw: unused
+    vec4 windowAxes;        // xy: window-plane image of 1 m east of the eye; zw: of 1 m north
 };
 
 // frame flags

@@ -66,7 +66,8 @@ base() {  # W H
   timeout 120 $PROBE --spv $G/baseline/cloud.comp.spv --width $1 --height $2 --frames 100 --out /tmp/base-$1x$2 \
     2>&1 | tee -a "$OUT/baseline.txt" | grep -i "using device\|driver\|FULL\|1/16\|timestamp"
 }
-if [ "${SKY_BENCH_MODE:-full}" = reprojected ]; then
+MODE=${SKY_BENCH_MODE:-full}  # full | reprojected | both (both: reprojected at 1080p and 4K, then full at 1080p)
+if [ "$MODE" = reprojected ] || [ "$MODE" = both ]; then
   # Temporal reprojection: one GPU frame per call (a frame needs the one before), so the GPU may clock
   # down during the CPU setup between frames: read the clock log next to the figures.
   bench() {
@@ -79,6 +80,12 @@ if [ "${SKY_BENCH_MODE:-full}" = reprojected ]; then
   base 1920 1080
   bench 3840 2160 50 200 bench-reprojected-3840x2160.json
   base 3840 2160
+  if [ "$MODE" = both ]; then
+    el "sky-bench full 1920x1080"
+    timeout 180 $BENCH --scene all --width 1920 --height 1080 --frames 100 --warmup 10 --gpu-frames 4 \
+      --device NVIDIA --json "$OUT/bench-1920x1080.json"
+    el "sky-bench full rc=$?"
+  fi
   kill $CLK
   el "done"
   exit 0

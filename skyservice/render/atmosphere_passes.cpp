@@ -14,8 +14,15 @@ namespace
 {
 
 // The LUTs depend on the ground radius; the osculating radius changes by ~21 km from equator to pole,
-// and by < 0.1% per km of it (atmosphere.h), so they are rebuilt when it moves by more than 1 km.
-constexpr double kLutRebuildRadiusM = 1000.0;
+// and the sky by < 0.1% per km of it (atmosphere.h), so the atmosphere's ground radius is the eye's
+// osculating radius rounded to 1 km, and the LUTs are rebuilt when that rounded value changes. Rounding
+// (not "rebuild when it moved 1 km from the last build") makes the sky a function of the eye alone:
+// two display channels, or a flight and a one-shot render, at the same pose get the same bytes.
+constexpr double kLutRadiusStepM = 1000.0;
+double atmosphereGroundRadiusM(const CameraFrame& camera)
+{
+    return kLutRadiusStepM * std::round(camera.localEarthRadiusM / kLutRadiusStepM);
+}
 
 glm::dvec3 toD(const glm::vec3& v) { return glm::dvec3(v.x, v.y, v.z); }
 
@@ -53,8 +60,8 @@ LightingEstimate estimateLighting(Renderer& r, const CameraFrame& camera, const 
                                   const WindowSummary& summary)
 {
     LightingEstimate e;
-    const double R = camera.localEarthRadiusM;
-    if (std::fabs(r.cpuAtmosphereRadiusM - R) > kLutRebuildRadiusM)
+    const double R = atmosphereGroundRadiusM(camera);
+    if (r.cpuAtmosphereRadiusM != R)
     {
         r.cpuAtmosphere = createAtmosphereReference(makeEarthAtmosphere(R));
         r.cpuAtmosphereRadiusM = R;
@@ -118,10 +125,10 @@ LightingEstimate estimateLighting(Renderer& r, const CameraFrame& camera, const 
 void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camera, const SunMoon& sunMoon,
                       const FrameInputs& in)
 {
-    const double R = camera.localEarthRadiusM;
+    const double R = atmosphereGroundRadiusM(camera);
     AtmosphereParams p = frameAtmosphere(R, sunMoon);
     std::memcpy(r.atmosphereUniforms.mapped, &p, sizeof p);
-    if (std::fabs(r.atmosphereRadiusM - R) > kLutRebuildRadiusM)
+    if (r.atmosphereRadiusM != R)
     {
         dispatch(r.ctx, cmd, r.transmittanceProgram, TRANSMITTANCE_LUT_WIDTH, TRANSMITTANCE_LUT_HEIGHT, 1, nullptr, 0,
                  {DescriptorInfo(r.atmosphereUniforms), DescriptorInfo(r.transmittanceLut)});

@@ -63,6 +63,9 @@ FrameParams makeFrameParams(const FrameInputs& in)
     f.cameraForward = v4(cam.forwardEnu, cam.eye.altitudeM);
     double R = cam.localEarthRadiusM;
     f.earth = vec4(float(R), float(R + cam.eye.altitudeM), float(in.window->warpRadiusM), float(in.window->halfExtentM));
+    const EyeOnWindow& e = in.eyeOnWindow;
+    f.windowOffsetM = vec4(float(e.offsetM.x), float(e.offsetM.y), 0.0f, 0.0f);
+    f.windowAxes = vec4(float(e.eastAxis.x), float(e.eastAxis.y), float(e.northAxis.x), float(e.northAxis.y));
 
     float minBase = 1e9f, maxTop = -1e9f;
     for (int k = 0; k < MAX_CLOUD_LAYERS; ++k)

@@ -5,6 +5,7 @@
 
 #include "shaders/shared/frame_params.h"
 #include "skyservice/render/render_types.h"
+#include "skyservice/earth/window_lattice.h"
 #include "skyservice/render/window_analysis.h"
 #include "skyservice/sky/ephemeris.h"
 
@@ -17,6 +18,7 @@ struct FrameInputs
     const SunMoon* sunMoon = nullptr;
     const WeatherWindow* window = nullptr;
     const WindowSummary* summary = nullptr;
+    EyeOnWindow eyeOnWindow;        ///< where the eye lies on `window` (its centre is the eye's lattice node)
     const ViewRequest* request = nullptr;
     const QualitySettings* quality = nullptr;
     double animationTimeS = 0;      ///< seconds since the weather's valid time (drives wind drift)

@@ -179,6 +179,38 @@ std::vector<uint16_t> average(const std::vector<double>& sum, uint32_t frames)
     return out;
 }
 
+// Puts the window of the eye's lattice node on the GPU (made on a worker thread ahead of time when the
+// eye flew toward it, else now), and starts the window of the node the eye is heading for.
+SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const QualitySettings& quality)
+{
+    WindowKey key{r.weatherVersion, windowCentreForEye(camera.eye.latDeg, camera.eye.lonDeg),
+                  quality.windowHalfExtentM, quality.windowWarpRadiusM};
+    if (!r.window || !(r.window->key == key) || !r.windowOnGpu)
+    {
+        r.windowOnGpu = false;  // stays false if the upload fails
+        r.window = takeWindow(r.windowPrefetch, r.weather, key);
+        const std::vector<glm::vec4>& texels = r.window->window.texels;
+        SKY_TRY(uploadImage(r.ctx, r.memory, r.weatherWindowImage, texels.data(), texels.size() * sizeof(glm::vec4),
+                            VK_IMAGE_LAYOUT_GENERAL));
+        r.windowOnGpu = true;
+    }
+    // The next node: the one under the point kWindowLookAheadM ahead along the eye's horizontal motion.
+    glm::dvec3 moveEnu = glm::transpose(camera.enuToEcef) * (camera.eyeEcefM - r.lastEyeEcefM);
+    r.lastEyeEcefM = camera.eyeEcefM;
+    double moveM = glm::length(glm::dvec2(moveEnu));
+    if (moveM > 1e-3 && moveM < kReprojectionMaxMoveM)
+    {
+        glm::dvec2 ahead = glm::dvec2(moveEnu) / moveM * kWindowLookAheadM;
+        double latDeg = 0, lonDeg = 0, hM = 0;
+        enuToGeodetic(camera, glm::dvec3(ahead, 0.0), latDeg, lonDeg, hM);
+        WindowKey next = key;
+        next.centre = windowCentreForEye(latDeg, lonDeg);
+        if (!(next == key))
+            prefetchWindow(r.windowPrefetch, r.weather, next);
+    }
+    return SkyStatus::success();
+}
+
 // One frame on the GPU: sky-view LUT, cloud march, composite, then the readback of every image.
 SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame& camera, const SunMoon& sunMoon,
                      const FrameInputs& in, RenderResult& result)
@@ -344,7 +376,7 @@ void destroyRenderer(Renderer& r)
 
 void setWeather(Renderer& r, const WeatherSnapshot& snapshot)
 {
-    r.weather = snapshot;
+    r.weather = std::make_shared<const WeatherSnapshot>(snapshot);
     ++r.weatherVersion;
     dropHistory(r);  // the previous frame shows other clouds
 }
@@ -363,19 +395,9 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
 
     CameraFrame camera = computeCameraFrame(request.pose);
     SunMoon sunMoon = computeSunMoon(request.unixTimeS, camera.eye.latDeg, camera.eye.lonDeg, camera.eye.altitudeM);
-    Renderer::WindowKey key{r.weatherVersion, camera.eye.latDeg, camera.eye.lonDeg, quality.windowHalfExtentM,
-                            quality.windowWarpRadiusM, true};
-    if (!(key == r.windowKey))
-    {
-        r.windowKey.valid = false;  // stays invalid if the upload fails
-        resampleWeatherWindow(r.weather, camera.eye.latDeg, camera.eye.lonDeg, quality.windowHalfExtentM, r.window,
-                              WEATHER_WINDOW_SIZE, quality.windowWarpRadiusM);
-        computeAnvils(r.window);
-        r.windowSummary = summarizeWindow(r.window);
-        SKY_TRY(uploadImage(r.ctx, r.memory, r.weatherWindowImage, r.window.texels.data(),
-                            r.window.texels.size() * sizeof(glm::vec4), VK_IMAGE_LAYOUT_GENERAL));
-        r.windowKey = key;
-    }
+    if (!r.weather)
+        setWeather(r, WeatherSnapshot{});  // no weather given: an empty sky
+    SKY_TRY(updateWeatherWindow(r, camera, quality));
     SKY_TRY(ensureOutputImages(r, request.width, request.height));
     if (quality.reprojected)
         SKY_TRY(ensureReprojectionImages(r, request.width, request.height));
@@ -383,21 +405,23 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     FrameInputs in;
     in.camera = &camera;
     in.sunMoon = &sunMoon;
-    in.window = &r.window;
-    in.summary = &r.windowSummary;
+    in.window = &r.window->window;
+    in.summary = &r.window->summary;
+    in.eyeOnWindow = placeEyeOnWindow(r.window->window.centreLatDeg, r.window->window.centreLonDeg,
+                                      camera.eye.latDeg, camera.eye.lonDeg);
     in.request = &request;
     in.quality = &quality;
-    in.animationTimeS = double(request.unixTimeS - r.weather.validTimeUnixS);
+    in.animationTimeS = double(request.unixTimeS - r.weather->validTimeUnixS);
     {
         // The drift frame is anchored at the weather grid's centre: the same on every machine and for
         // every eye position (multi-channel seams, no sliding when flying).
-        const LatLonGrid& g = r.weather.grid;
+        const LatLonGrid& g = r.weather->grid;
         EyePose anchor;
         anchor.latDeg = std::clamp(g.lat0Deg + 0.5 * g.dLatDeg * double(g.nLat > 0 ? g.nLat - 1 : 0), -90.0, 90.0);
         anchor.lonDeg = g.lon0Deg + 0.5 * g.dLonDeg * double(g.nLon > 0 ? g.nLon - 1 : 0);
         in.driftEnuToEcef = computeCameraFrame(anchor).enuToEcef;
     }
-    LightingEstimate light = estimateLighting(r, camera, sunMoon, r.windowSummary);
+    LightingEstimate light = estimateLighting(r, camera, sunMoon, r.window->summary);
     // Pre-exposure: every light source is scaled by the exposure before it reaches the GPU, so that the
     // half-float images hold values near 1 by day and by moonlight alike (a full-moon sky is ~1e-7
     // W m^-2 sr^-1 nm^-1, below half precision). Linear outputs are divided by `exposure` for absolute units.

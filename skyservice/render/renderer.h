@@ -15,6 +15,7 @@
 #include "skyservice/render/reprojection.h"
 #include "skyservice/render/shadow_map.h"
 #include "skyservice/render/window_analysis.h"
+#include "skyservice/render/window_provider.h"
 #include "skyservice/sky/atmosphere_reference.h"
 #include "skyservice/vk/programs.h"
 #include "weather_ingest/weather_snapshot.h"
@@ -51,19 +52,14 @@ struct Renderer
     VkQueryPool timestamps = VK_NULL_HANDLE;
     ShadowMapPass shadowPass;
 
-    WeatherSnapshot weather;
-    WeatherWindow window;
-    WindowSummary windowSummary;
-    uint64_t weatherVersion = 0;  ///< incremented by setWeather: invalidates the cached window
-    /// What the window on the GPU was resampled for: a frame with the same weather, eye lat/lon and
-    /// window settings (a still camera, a turning one) reuses it instead of resampling and uploading.
-    struct WindowKey
-    {
-        uint64_t weatherVersion = 0;
-        double latDeg = 0, lonDeg = 0, halfExtentM = 0, warpRadiusM = 0;
-        bool valid = false;
-        bool operator==(const WindowKey&) const = default;
-    } windowKey;
+    std::shared_ptr<const WeatherSnapshot> weather;  ///< shared with the window worker thread
+    uint64_t weatherVersion = 0;  ///< incremented by setWeather: invalidates the windows made before
+    /// The window on the GPU (centred on the lattice node of the eye, earth/window_lattice.h): frames
+    /// whose eye stays in that node's cell, with the same weather and window settings, reuse it.
+    std::shared_ptr<const PreparedWindow> window;
+    bool windowOnGpu = false;      ///< weatherWindowImage holds `window` (false after a failed upload)
+    WindowPrefetch windowPrefetch; ///< the next cell's window, made on a worker thread
+    glm::dvec3 lastEyeEcefM{0.0};  ///< eye of the previous frame: its motion says which cell is next
     double atmosphereRadiusM = 0;  ///< bottom radius the transmittance/multiscatter LUTs were built for
     double noiseStartupMs = 0;     ///< GPU time to generate the noise textures
     AtmosphereReference cpuAtmosphere;   ///< CPU copy of the atmosphere LUTs, for the lighting estimate

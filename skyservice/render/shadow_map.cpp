@@ -196,7 +196,7 @@ SkyStatus renderShadowMap(Renderer& r, const ViewRequest& request, const Quality
         result.shadowOpticalDepth[i] = glm::unpackHalf1x16(halves[i * 4 + 1]);
     }
     result.shadowMap = shadowMapMetadata(g, sunMoon, camera.localEarthRadiusM, request.unixTimeS,
-                                         r.weather.validTimeUnixS);
+                                         r.weather->validTimeUnixS);
     return SkyStatus::success();
 }
 

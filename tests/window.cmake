@@ -1,0 +1,10 @@
+# The weather window for a moving eye (issue 5): the lattice of window centres on the CPU (window.*,
+# label cpu), and on the GPU (lavapipe, validation on) that crossing a cell edge moves no cloud and that
+# a flight makes its windows on the worker thread, not on the frame path.
+add_executable(test_window_lattice unit/test_window_lattice.cpp)
+target_link_libraries(test_window_lattice PRIVATE sky_renderer GTest::gtest_main sky_warnings)
+gtest_discover_tests(test_window_lattice TEST_PREFIX "window." DISCOVERY_TIMEOUT 30 PROPERTIES LABELS cpu)
+
+add_executable(test_window_motion gpu/test_window_motion.cpp gpu/scenes.cpp)
+target_link_libraries(test_window_motion PRIVATE sky_renderer GTest::gtest_main sky_warnings)
+gtest_discover_tests(test_window_motion TEST_PREFIX "window." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
