@@ -17,7 +17,9 @@
 //
 // --mode reprojected times the temporal reprojection loop (skyservice/render/reprojection.h): each call
 // marches one pixel of every 4x4 block ("march") and rebuilds the full image from the previous call's
-// ("reconstruct"). The camera is still, as in full mode; setWeather drops the history per scene.
+// ("reconstruct"). The camera is still, as in full mode, unless --speed V flies it along its heading
+// (V/60 m per frame: the CPU setup then shows what a moving eye costs); setWeather drops the history
+// per scene.
 #include "skyservice/bench/bench_report.h"
 #include "skyservice/output/contact_sheet.h"
 #include "skyservice/output/image_files.h"
@@ -25,6 +27,7 @@
 #include "skyservice/sky/ephemeris.h"
 
 #include <CLI/CLI.hpp>
+#include <GeographicLib/Geodesic.hpp>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -53,6 +56,7 @@ struct BenchOptions
     uint32_t steps = 0;
     uint32_t gpuFrames = 1;
     bool shadowMap = false;
+    double speedMps = 0;  ///< the eye flies along its heading at this speed, one frame per 1/60 s
 };
 
 std::string utcClock()
@@ -128,8 +132,12 @@ SkyStatus runScene(Renderer& r, const BenchOptions& o, const BenchScene& scene, 
 
     out.scene = scene;
     RenderResult result;
+    const GeographicLib::Geodesic& geodesic = GeographicLib::Geodesic::WGS84();
     for (uint32_t i = 0; i < o.warmup + o.frames; ++i)
     {
+        if (o.speedMps > 0 && i > 0)  // one 60 Hz frame of flight along the heading
+            geodesic.Direct(request.pose.latDeg, request.pose.lonDeg, request.pose.headingDeg, o.speedMps / 60.0,
+                            request.pose.latDeg, request.pose.lonDeg);
         auto start = std::chrono::steady_clock::now();
         SKY_TRY(renderView(r, request, quality, result));
         double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -233,6 +241,7 @@ int runBench(const BenchOptions& o)
     run.warmup = o.warmup;
     run.gpuFramesPerCall = o.gpuFrames;
     run.mode = o.mode;
+    run.speedMps = o.speedMps;
     run.quality = qualityJson(quality);
     printBenchTable(stdout, run);
 
@@ -273,6 +282,8 @@ int main(int argc, char** argv)
     app.add_option("--gpu-frames", o.gpuFrames,
                    "GPU frames per renderView call, back to back after one CPU setup; a sample is their mean")
         ->check(CLI::Range(1, 64));
+    app.add_option("--speed", o.speedMps, "Fly the eye along its heading at this speed (m/s, 60 Hz frames; 0 = still)")
+        ->check(CLI::Range(0.0, 3000.0));
     app.add_flag("--shadow-map", o.shadowMap, "Also render (and read back) the cloud shadow map every call");
     app.add_option("--steps", o.steps, "Maximum view samples per ray (default: the renderer's)")
         ->check(CLI::Range(8, 4096));

@@ -76,6 +76,7 @@ nlohmann::json benchToJson(const BenchRun& run)
     doc["warmup"] = run.warmup;
     doc["gpuFramesPerCall"] = run.gpuFramesPerCall;
     doc["mode"] = run.mode;
+    doc["eyeSpeedMps"] = run.speedMps;
     doc["quality"] = run.quality;
     nlohmann::json alloc = nlohmann::json::object();
     for (const auto& [name, bytes] : run.memory.liveBytes)
@@ -116,9 +117,9 @@ nlohmann::json benchToJson(const BenchRun& run)
 
 void printBenchTable(std::FILE* out, const BenchRun& run)
 {
-    std::fprintf(out, "sky-bench: %s | %s | %ux%u | mode %s | %u samples after %u warm-up, %u GPU frame(s) each\n",
-                 run.deviceName.c_str(), run.driver.c_str(), run.width, run.height, run.mode.c_str(), run.frames,
-                 run.warmup, run.gpuFramesPerCall);
+    std::fprintf(out, "sky-bench: %s | %s | %ux%u | mode %s | eye %.0f m/s | %u samples after %u warm-up, %u GPU frame(s) each\n",
+                 run.deviceName.c_str(), run.driver.c_str(), run.width, run.height, run.mode.c_str(), run.speedMps,
+                 run.frames, run.warmup, run.gpuFramesPerCall);
     std::fprintf(out, "GPU ms per pass and frame (median/p95, timestamps); wall = renderView call incl. CPU setup "
                       "(median/p95)\n");
     std::vector<std::string> columns = passColumns(run);

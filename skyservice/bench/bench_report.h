@@ -60,6 +60,7 @@ struct BenchRun
     uint32_t frames = 0, warmup = 0;
     uint32_t gpuFramesPerCall = 1;  ///< GPU frames per renderView call (one CPU setup); samples are their mean
     std::string mode;
+    double speedMps = 0;      ///< eye speed along its heading (m/s, 60 Hz frames); 0 = a still eye
     nlohmann::json quality;   ///< the QualitySettings used
     BenchMemory memory;
     std::vector<BenchSceneResult> scenes;

@@ -457,7 +457,13 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
         params.exposure.w = frames > 1 ? float(halton(k + 1, 3) - 0.5) : 0.0f;
         std::memcpy(r.frameUniforms.mapped, &params, sizeof params);
         RenderResult one;
-        SKY_TRY(renderOnce(r, request, camera, sunMoon, in, one));
+        SkyStatus status = renderOnce(r, request, camera, sunMoon, in, one);
+        if (!status.ok())
+        {
+            r.atmosphereRadiusM = 0;  // the LUTs recorded for this frame may never have been computed
+            r.skyViewInputsValid = false;
+            return status;
+        }
         for (const auto& [pass, ms] : one.gpuMs)
             result.gpuMs[pass] += ms / frames;
         accumulate(one.cloudRgbaHalf, cloudSum);

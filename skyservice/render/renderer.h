@@ -10,6 +10,7 @@
 // Every function that can fail at run time returns a SkyStatus naming what failed.
 #pragma once
 
+#include "shaders/shared/atmosphere_params.h"
 #include "skyservice/earth/weather_window.h"
 #include "skyservice/render/render_types.h"
 #include "skyservice/render/reprojection.h"
@@ -61,6 +62,10 @@ struct Renderer
     WindowPrefetch windowPrefetch; ///< the next cell's window, made on a worker thread
     glm::dvec3 lastEyeEcefM{0.0};  ///< eye of the previous frame: its motion says which cell is next
     double atmosphereRadiusM = 0;  ///< bottom radius the transmittance/multiscatter LUTs were built for
+    /// The inputs the sky-view LUT was last built from (atmosphere_passes.cpp reuses it when equal).
+    SkyViewPushConstants skyViewPush{};
+    AtmosphereParams skyViewAtmosphere{};
+    bool skyViewInputsValid = false;
     double noiseStartupMs = 0;     ///< GPU time to generate the noise textures
     AtmosphereReference cpuAtmosphere;   ///< CPU copy of the atmosphere LUTs, for the lighting estimate
     double cpuAtmosphereRadiusM = -1;    ///< ground radius cpuAtmosphere was built for
