@@ -4,7 +4,8 @@
 // The window is an azimuthal equidistant projection centred on the eye (GeographicLib
 // AzimuthalEquidistant on WGS84): texel (i, j) of a WEATHER_WINDOW_SIZE^2 grid covers the point at
 // easting x = (i + 0.5 - N/2) * texelSizeM and northing y = (j + 0.5 - N/2) * texelSizeM from the eye.
-// It is stored as a 2D array texture, RGBA32F, with WEATHER_WINDOW_SLICES slices:
+// It is stored as a 2D array texture, RGBA16F (half floats: altitudes in 8 m steps up to 16 km), with
+// WEATHER_WINDOW_SLICES slices:
 //
 //   slice 2k   (k < MAX_CLOUD_LAYERS): coverage [0,1], base altitude (m), top altitude (m), cloud type (0..10, CIGI)
 //   slice 2k+1                         : wind east (m/s), wind north (m/s), precipitation rate (mm/h), CAPE (J/kg)

@@ -189,8 +189,8 @@ SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const Qual
     {
         r.windowOnGpu = false;  // stays false if the upload fails
         r.window = takeWindow(r.windowPrefetch, r.weather, key);
-        const std::vector<glm::vec4>& texels = r.window->window.texels;
-        SKY_TRY(uploadImage(r.ctx, r.memory, r.weatherWindowImage, texels.data(), texels.size() * sizeof(glm::vec4),
+        const std::vector<uint16_t>& texels = r.window->gpuTexelsHalf;
+        SKY_TRY(uploadImage(r.ctx, r.memory, r.weatherWindowImage, texels.data(), texels.size() * sizeof(uint16_t),
                             VK_IMAGE_LAYOUT_GENERAL));
         r.windowOnGpu = true;
     }
@@ -327,7 +327,7 @@ SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
     SKY_TRY(createImage(r.ctx, r.memory, r.blueNoise, d, "blue noise"));
     d = ImageDesc{};
     d.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-    d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    d.format = VK_FORMAT_R16G16B16A16_SFLOAT;  // window_provider.h says why half floats
     d.width = d.height = WEATHER_WINDOW_SIZE;
     d.layers = WEATHER_WINDOW_SLICES;
     d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/window_provider.h"
 
+#include <glm/gtc/packing.hpp>
+
+#include <algorithm>
 #include <chrono>
 
 namespace sky
@@ -14,6 +17,11 @@ std::shared_ptr<const PreparedWindow> prepareWindow(const WeatherSnapshot& weath
                           WEATHER_WINDOW_SIZE, key.warpRadiusM);
     computeAnvils(out->window);
     out->summary = summarizeWindow(out->window);
+    const std::vector<glm::vec4>& t = out->window.texels;
+    out->gpuTexelsHalf.resize(t.size() * 4);
+    for (size_t i = 0; i < t.size(); ++i)
+        for (int c = 0; c < 4; ++c)  // within half range (65504): no window value comes near it
+            out->gpuTexelsHalf[4 * i + size_t(c)] = glm::packHalf1x16(std::clamp(t[i][c], -65504.0f, 65504.0f));
     return out;
 }
 
