@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <vector>
 
 using namespace skytest;
 using nlohmann::json;
@@ -40,6 +41,7 @@ TEST(ServiceSoak, MemoryStaysFlat)
     auto start = std::chrono::steady_clock::now();
     uint64_t last = 0, nextSwap = 100, swaps = 0, torn = 0, read = 0;
     long rssWarm = -1, rssMax = 0;
+    std::vector<long> rssSamples;  // after the warm-up, one per weather swap
     uint64_t deviceWarm = 0, deviceMax = 0;
     json s;
     while (last < frames)
@@ -74,6 +76,7 @@ TEST(ServiceSoak, MemoryStaysFlat)
             }
             if (rssWarm >= 0)
             {
+                rssSamples.push_back(rss);
                 rssMax = std::max(rssMax, rss);
                 deviceMax = std::max(deviceMax, device);
             }
@@ -88,10 +91,24 @@ TEST(ServiceSoak, MemoryStaysFlat)
                 s["frame_ms"]["p95"].get<double>(), (unsigned long long)swaps, (unsigned long long)read,
                 (unsigned long long)torn, rssWarm, rssMax, (unsigned long long)deviceWarm, (unsigned long long)deviceMax);
     ASSERT_GT(rssWarm, 0);
-    // Tolerances: device memory exactly flat (every allocation is tracked and reused); RSS within 8 MiB
-    // of the warm value (malloc arenas and the weather timelines, ~1 MB each, may settle a little).
+    // Tolerances: device memory exactly flat (every allocation is tracked and reused). Host memory: a
+    // weather swap makes a new weather window (17 MB with its half-float copy) before the old one is
+    // freed, so RSS moves by up to about one window from swap to swap (measured: 228-249 MB over 4000
+    // frames, no trend; SKY_SOAK_VERBOSE=1). So: every sample within one window plus 8 MiB of the warm
+    // value, and no trend: the lowest sample of the last third within 4 MiB of the lowest of the first
+    // third (the lows repeat to within 1 MB; a leak of 4 kB per frame raises them past that).
     EXPECT_EQ(deviceMax, deviceWarm);
-    EXPECT_LT(rssMax - rssWarm, 8 * 1024) << "RSS grew from " << rssWarm << " kB to " << rssMax << " kB";
+    EXPECT_LT(rssMax - rssWarm, 25 * 1024) << "RSS grew from " << rssWarm << " kB to " << rssMax << " kB";
+    ASSERT_GE(rssSamples.size(), 6u);
+    const size_t third = rssSamples.size() / 3;
+    long firstKb = rssSamples[0], lastKb = rssSamples.back();
+    for (size_t i = 0; i < third; ++i)
+    {
+        firstKb = std::min(firstKb, rssSamples[i]);
+        lastKb = std::min(lastKb, rssSamples[rssSamples.size() - third + i]);
+    }
+    std::printf("soak: lowest RSS in the first third of the samples %ld kB, in the last third %ld kB\n", firstKb, lastKb);
+    EXPECT_LT(lastKb - firstKb, 4 * 1024) << "RSS trends upward: a leak";
     EXPECT_GE(swaps, frames / 100 - 1);
     EXPECT_TRUE(s["weather"]["last_error"].is_null()) << s;
     EXPECT_EQ(d.stop(), 0);
