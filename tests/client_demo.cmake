@@ -22,3 +22,16 @@ if(TARGET client_demo AND TARGET skyservice)
                      $<TARGET_FILE:client_demo_png_check>)
     set_tests_properties(client_demo.windowed_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240)
 endif()
+
+# The tiny libskyclient examples, one per transport, against the real daemon.
+if(TARGET skyservice AND TARGET example-shm AND TARGET example-files AND TARGET client_demo_png_check)
+    set(example_vulkan "")
+    if(TARGET example-vulkan)
+        set(example_vulkan $<TARGET_FILE:example-vulkan>)
+    endif()
+    add_test(NAME client_demo.examples
+             COMMAND ${CMAKE_CURRENT_LIST_DIR}/client_demo/examples.sh $<TARGET_FILE:skyservice>
+                     $<TARGET_FILE:client_demo_png_check> $<TARGET_FILE:example-shm> $<TARGET_FILE:example-files>
+                     ${example_vulkan})
+    set_tests_properties(client_demo.examples PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240)
+endif()

@@ -406,6 +406,19 @@ SkyResult sky_client_status(SkyClient* client, char* buffer, size_t buffer_bytes
     return SKY_OK;
 }
 
+SkyResult sky_client_subscribe_files(SkyClient* client, const char* dir, uint32_t every, const char* format)
+{
+    if (!client)
+        return SKY_ERR_ARGUMENT;
+    if (!dir || !format)
+        return fail(client, SKY_ERR_ARGUMENT, "dir or format is null");
+    json reply;
+    SkyResult r = request(client, {{"type", "subscribe"}, {"transport", "files"}, {"dir", dir}, {"every", every},
+                                   {"format", format}},
+                          reply);
+    return r == SKY_OK ? expectType(client, reply, "ok") : r;
+}
+
 SkyResult sky_client_subscribe_shm(SkyClient* client)
 {
     if (!client)
