@@ -14,6 +14,7 @@
 #include "shaders/lib/phase.glsl"
 #include "shaders/lib/atmosphere.glsl"
 #include "shaders/lib/window_warp.glsl"
+#include "shaders/lib/world_jitter.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE_2D, local_size_y = WORKGROUP_SIZE_2D) in;
 
@@ -69,7 +70,7 @@ void main()
     }
 
     if (hit)
-        marchClouds(dir, tEnter, tExit, pixel, radiance, transmittance, depthWeighted, depthWeight);
+        marchClouds(dir, tEnter, tExit, radiance, transmittance, depthWeighted, depthWeight);
 
     if (!highInFront && high.alpha > 0.0f)
     {

@@ -4,11 +4,11 @@
 // full-resolution image, a teleport or an explicit drop leaves no pixel of the old view, and a slow
 // pan stays close to full-resolution renders of every pose.
 //
-// PSNR is computed on the cloud image (premultiplied linear radiance rgb + alpha, the four channels of
-// RenderResult::cloudRgbaHalf) over all pixels, with the peak = the largest channel value of the
-// full-resolution reference. The tone-mapped display PSNR is printed too.
+// PSNR (tests/gpu/image_compare.h) is computed on the cloud image over all pixels, with the peak = the
+// largest channel value of the full-resolution reference. The tone-mapped display PSNR is printed too.
 #include "skyservice/render/renderer.h"
 #include "tests/gpu/gpu_fixture.h"
+#include "tests/gpu/image_compare.h"
 #include "tests/gpu/scenes.h"
 
 #include <glm/gtc/packing.hpp>
@@ -24,64 +24,14 @@ using namespace sky::testscenes;
 namespace
 {
 
-double psnrCloud(const RenderResult& test, const RenderResult& reference)
-{
-    double peak = 0.0, se = 0.0;
-    size_t n = reference.cloudRgbaHalf.size();
-    for (size_t i = 0; i < n; ++i)
-    {
-        double ref = glm::unpackHalf1x16(reference.cloudRgbaHalf[i]);
-        double d = double(glm::unpackHalf1x16(test.cloudRgbaHalf[i])) - ref;
-        peak = std::max(peak, ref);
-        se += d * d;
-    }
-    double mse = se / double(n);
-    return mse > 0.0 ? 10.0 * std::log10(peak * peak / mse) : 200.0;
-}
-
-double psnrDisplay(const RenderResult& test, const RenderResult& reference)
-{
-    double se = 0.0;
-    for (size_t i = 0; i < reference.displayRgba8.size(); ++i)
-    {
-        double d = double(test.displayRgba8[i]) - double(reference.displayRgba8[i]);
-        se += d * d;
-    }
-    double mse = se / double(reference.displayRgba8.size());
-    return mse > 0.0 ? 10.0 * std::log10(255.0 * 255.0 / mse) : 200.0;
-}
-
-QualitySettings reprojectedQuality()
-{
-    QualitySettings q = testQuality();
-    q.reprojected = true;
-    return q;
-}
-
-// Scattered cumulus seen from the ground, a little above the horizon: cloud edges, sky gaps and depth
-// from ~1 km to the horizon.
-ViewRequest startView()
-{
-    ViewRequest v = lookUp(45.0, 7.0, 200.0, 12.0, "2026-06-21T12:00:00Z");
-    v.width = 128;
-    v.height = 72;
-    return v;
-}
-
 class Reprojection : public GpuFixture
 {
 protected:
     void SetUp() override
     {
-        setWeather(*renderer, uniformLayer(0.4f, CloudType::Cumulus, 1200.0f, 3000.0f));
+        setWeather(*renderer, reprojectionWeather());
     }
-    RenderResult render(const ViewRequest& view, const QualitySettings& q)
-    {
-        RenderResult result;
-        SkyStatus s = renderView(*renderer, view, q, result);
-        EXPECT_TRUE(s.ok()) << s.message;
-        return result;
-    }
+    RenderResult render(const ViewRequest& view, const QualitySettings& q) { return renderOk(view, q); }
 };
 
 }  // namespace
@@ -107,7 +57,7 @@ TEST(ReprojectionCpu, SixteenConsecutiveFramesMarchEveryBlockPosition)
 
 TEST(ReprojectionCpu, HistoryIsDroppedBeyondTheLimits)
 {
-    ViewRequest v = startView();
+    ViewRequest v = reprojectionView();
     ReprojectionHistory h;
     h.valid = true;
     h.lastView = v;
@@ -141,7 +91,7 @@ TEST(ReprojectionCpu, HistoryIsDroppedBeyondTheLimits)
 
 TEST_F(Reprojection, StillViewConvergesToTheFullResolutionImage)
 {
-    ViewRequest v = startView();
+    ViewRequest v = reprojectionView();
     RenderResult full = render(v, testQuality());
     ASSERT_GT(cloudStats(full).cloudPixels, 200u) << "the scene must show cloud edges";
     dropHistory(*renderer);
@@ -161,7 +111,7 @@ TEST_F(Reprojection, StillViewConvergesToTheFullResolutionImage)
 
 TEST_F(Reprojection, TeleportLeavesNoPixelOfTheOldView)
 {
-    ViewRequest a = startView();
+    ViewRequest a = reprojectionView();
     for (int k = 0; k < 16; ++k)
         render(a, reprojectedQuality());
     // 50 km east and turned: the history limits drop it on their own.
@@ -200,7 +150,7 @@ TEST_F(Reprojection, TeleportLeavesNoPixelOfTheOldView)
 // from screen-space march jitter and cloud detail finer than a pixel.
 TEST_F(Reprojection, SlowPanStaysCloseToFullResolution)
 {
-    ViewRequest v = startView();
+    ViewRequest v = reprojectionView();
     dropHistory(*renderer);
     for (int k = 0; k < 16; ++k)
         render(v, reprojectedQuality());
