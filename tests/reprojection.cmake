@@ -12,3 +12,8 @@ gtest_discover_tests(test_reprojection TEST_PREFIX "reprojection." DISCOVERY_TIM
 add_executable(test_world_jitter gpu/test_world_jitter.cpp)
 target_link_libraries(test_world_jitter PRIVATE sky_reprojection_test_support GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_world_jitter TEST_PREFIX "reprojection." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+
+# Scripted flight-path gates: cruise, 60 and 90 deg/s turns, climb through a deck.
+add_executable(test_flight_path gpu/test_flight_path.cpp gpu/flight_path.cpp)
+target_link_libraries(test_flight_path PRIVATE sky_reprojection_test_support GTest::gtest_main sky_warnings)
+gtest_discover_tests(test_flight_path TEST_PREFIX "reprojection." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)

@@ -60,6 +60,25 @@ vec4 bilinearHistory(vec2 q)
     return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
 }
 
+// The fresh pixels interpolated bilinearly at `pixel`: what a pixel without any history shows. Fresh
+// pixels sit B pixels apart, at b * B + phase; outside their grid (the image borders) the nearest row or
+// column is extended. Measured on the turns of tests/gpu/test_flight_path.cpp: the worst 8-pixel band
+// the view turns toward is 0.7-1.7 dB closer to the full render than with the nearest fresh pixel, which
+// copies B x B blocks there; for rejected history inside the image the nearest pixel measured better.
+vec4 freshBilinear(ivec2 pixel, ivec2 phase, int B)
+{
+    ivec2 blocks = (ivec2(frame.image.xy) - phase + B - 1) / B;  // fresh pixels per row and column
+    vec2 u = vec2(pixel - phase) / float(B);
+    ivec2 b0 = ivec2(floor(u));
+    vec2 f = u - vec2(b0);
+    ivec2 top = blocks - 1;
+    vec4 c00 = imageLoad(freshCloud, clamp(b0, ivec2(0), top));
+    vec4 c10 = imageLoad(freshCloud, clamp(b0 + ivec2(1, 0), ivec2(0), top));
+    vec4 c01 = imageLoad(freshCloud, clamp(b0 + ivec2(0, 1), ivec2(0), top));
+    vec4 c11 = imageLoad(freshCloud, clamp(b0 + ivec2(1, 1), ivec2(0), top));
+    return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+}
+
 void writeAll(ivec2 pixel, vec4 cloud, float depth)
 {
     imageStore(cloudOut, pixel, cloud);
@@ -98,8 +117,8 @@ void main()
 
     // The fresh 3x3 neighbourhood: its colour range and the fresh pixel nearest to this one.
     vec4 lo = vec4(1e30f);
-    vec4 hi = vec4(-1e30f);
     vec4 nearest = vec4(0.0f);
+    vec4 hi = vec4(-1e30f);
     float nearestDepth = 0.0f;
     int nearestD2 = 1 << 30;
     for (int dy = -1; dy <= 1; ++dy)
@@ -123,7 +142,7 @@ void main()
         }
     if (frame.reprojection.w == 0u)
     {
-        writeAll(pixel, nearest, nearestDepth);
+        writeAll(pixel, freshBilinear(pixel, phase, B), nearestDepth);
         return;
     }
 
@@ -148,6 +167,7 @@ void main()
         // The previous depth is measured from the previous eye: the distance from this eye.
         depthGuess = previousDepth > 0.0f ? length(frame.previousEye.xyz + normalize(v) * previousDepth) : 0.0f;
     }
+    bool onScreen = accept;
     vec4 previous = vec4(0.0f);
     if (accept)
     {
@@ -169,7 +189,10 @@ void main()
     }
     if (!accept)
     {
-        writeAll(pixel, nearest, nearestDepth);
+        // Rejected history (disocclusion, colour clamp) takes the nearest fresh pixel: a sharp value
+        // beside a cloud edge; no history at all (the border the view turns toward) the interpolated
+        // fresh pixels, which do not copy 4x4 blocks there.
+        writeAll(pixel, onScreen ? nearest : freshBilinear(pixel, phase, B), nearestDepth);
         return;
     }
     writeAll(pixel, previous, depthGuess);
