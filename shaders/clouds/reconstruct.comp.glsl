@@ -1,15 +1,17 @@
 // SPDX-License-Identifier: MIT
 // Temporal reconstruction of the cloud image (DESIGN §3 "Temporal reprojection", issue 5).
 //
-// The march marched one pixel of every 4x4 block this frame (position frame.reprojection.yz in the
-// block) into a block-resolution image. Every full-resolution pixel here is either that fresh pixel,
-// taken as is, or the previous frame's cloud image reprojected: the pixel's ray is followed to the
+// The march marched one pixel of every BxB block this frame (B = frame.reprojection.x: 4, or 2 and 1
+// near and inside a cloud layer; position frame.reprojection.yz in the block) into a block-resolution
+// image. Every full-resolution pixel here is either that fresh pixel, taken as is, or the previous
+// frame's cloud image reprojected: the pixel's ray is followed to the
 // cloud depth of its nearest fresh pixel (or to infinity where that ray saw no cloud), the point is
 // projected into the previous camera (axes and eye given relative to the current eye, computed in
 // double on the CPU), and the previous image is read there. History is rejected when that lands off
 // screen, when the previous depth there disagrees with the expected one (disocclusion), or when it
 // lies outside the range of the fresh 3x3 neighbourhood (colour clamp); a rejected pixel takes its
-// nearest fresh pixel's value. The result goes to the images the composite reads and to the history.
+// nearest fresh pixel's value, a pixel without any history (off the previous screen, or no history)
+// the fresh pixels interpolated. The result goes to the images the composite reads and to the history.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -35,7 +37,7 @@ layout(binding = 8, r32f) uniform writeonly image2D historyDepthOut;
 const float kDepthTolerance = 0.1f;
 const float kDepthToleranceFloorM = 100.0f;
 // The colour box of the fresh neighbourhood is widened by this share of its size on each side plus an
-// absolute margin (pre-exposed radiance is ~1 by day): fresh pixels are 4 pixels apart, so detail
+// absolute margin (pre-exposed radiance is ~1 by day): fresh pixels are B pixels apart, so detail
 // between them is often outside their range and still right. Measured on the 2-degree pan of
 // tests/gpu/test_reprojection.cpp: a box not widened loses ~1.5 dB against full-resolution renders,
 // widened by its size ~0.1 dB, while gross misses (a cloud reprojected onto clear sky) stay rejected.
@@ -106,7 +108,7 @@ void main()
     ivec2 pixel = ivec2(permutedPixel(gl_GlobalInvocationID.xy));
     if (pixel.x >= int(frame.image.x) || pixel.y >= int(frame.image.y))
         return;
-    const int B = 4;
+    const int B = int(frame.reprojection.x);  // 4; 2 or 1 near or inside a cloud layer
     ivec2 phase = ivec2(int(frame.reprojection.y), int(frame.reprojection.z));
     ivec2 block = pixel / B;
     if (pixel == block * B + phase)

@@ -70,13 +70,19 @@ FlightStats flySegment(Renderer& r, ViewRequest& view, const Motion& motion, int
             edgeAbs = std::max(edgeAbs, meanAbsCloudError(frame, reference, b));
         }
         double self = k > 0 ? psnrResampled(resampleCloud(previousReference, previousView, view), reference) : 0.0;
-        std::printf("%s frame %d: alt %.0f m, cloud PSNR %.1f dB, display %.1f dB, edge cloud %.1f dB "
+        std::printf("%s frame %d: alt %.0f m, block %u, cloud PSNR %.1f dB, display %.1f dB, edge cloud %.1f dB "
                     "(mean abs %.4f), reference vs previous %.1f dB%s\n",
-                    name.c_str(), k + 1, view.pose.altitudeM, pc, pd, edgeDb, edgeAbs, self,
+                    name.c_str(), k + 1, view.pose.altitudeM, frame.marchBlockPx, pc, pd, edgeDb, edgeAbs, self,
                     dropped ? (", history dropped: " + lastHistoryDropReason(r)).c_str() : "");
         if (k > 0)
             stats.worstReferenceDb = std::min(stats.worstReferenceDb, self);
         stats.worstEdgeDeficitDb = std::max(stats.worstEdgeDeficitDb, pc - edgeDb);
+        stats.lastBlockPx = frame.marchBlockPx;
+        stats.lastBlockReason = frame.marchBlockReason;
+        stats.minBlockPx = std::min(stats.minBlockPx, frame.marchBlockPx);
+        stats.maxBlockPx = std::max(stats.maxBlockPx, frame.marchBlockPx);
+        if (frame.marchBlockPx == 1 && frame.cloudRgbaHalf != reference.cloudRgbaHalf)
+            ++stats.fullBlockFramesNotExact;
         previousReference = reference;
         previousView = view;
         stats.worstCloudDb = std::min(stats.worstCloudDb, pc);

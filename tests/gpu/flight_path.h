@@ -33,7 +33,10 @@ struct FlightStats
     double worstReferenceDb = 1e9;    ///< lowest PSNR of a reference against the previous one resampled to it
     int historyDrops = 0;             ///< measured frames that did not use history
     int frames = 0;
-    uint32_t lastBlockPx = 0;         ///< march block size of the last frame
+    uint32_t lastBlockPx = 0;         ///< march block of the last frame (RenderResult::marchBlockPx)
+    std::string lastBlockReason;      ///< and its reason
+    uint32_t minBlockPx = 4, maxBlockPx = 1;  ///< finest and coarsest march block of the measured frames
+    int fullBlockFramesNotExact = 0;  ///< block-1 frames whose cloud image differs from the full render
 };
 
 /// Which columns count as "the screen edges" of a flight: the 8 columns on the side the view turns

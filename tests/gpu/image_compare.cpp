@@ -141,12 +141,16 @@ double psnrResampled(const Resampled& test, const RenderResult& reference)
     return toPsnr(referencePeak(reference), se, count);
 }
 
-void writeDisplayPng(const RenderResult& r, const std::string& path)
+void writeDisplayPng(const RenderResult& r, const std::string& path, uint32_t scale)
 {
     ImageRgba8 image;
-    image.width = r.width;
-    image.height = r.height;
-    image.pixels = r.displayRgba8;
+    image.width = r.width * scale;
+    image.height = r.height * scale;
+    image.pixels.resize(size_t(image.width) * image.height * 4);
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x)
+            for (size_t c = 0; c < 4; ++c)
+                image.pixel(x, y)[c] = r.displayRgba8[(size_t(y / scale) * r.width + x / scale) * 4 + c];
     std::string error;
     if (!writePng(path, image, error))
         std::printf("could not write %s: %s\n", path.c_str(), error.c_str());

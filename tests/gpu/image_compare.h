@@ -39,7 +39,8 @@ Resampled resampleCloud(const RenderResult& source, const ViewRequest& sourceVie
 /// PSNR of a resampled cloud image against a render of the target view, over valid pixels.
 double psnrResampled(const Resampled& test, const RenderResult& reference);
 
-/// Writes the display image as a PNG (for looking at a frame by eye; tests do not read it back).
-void writeDisplayPng(const RenderResult& r, const std::string& path);
+/// Writes the display image as a PNG, each pixel as a `scale` x `scale` square (for looking at a
+/// 128x72 frame by eye; tests do not read it back).
+void writeDisplayPng(const RenderResult& r, const std::string& path, uint32_t scale = 4);
 
 }  // namespace sky::testscenes

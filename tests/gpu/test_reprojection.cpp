@@ -170,6 +170,8 @@ TEST_F(Reprojection, SlowPanStaysCloseToFullResolution)
     EXPECT_GE(worstDisplay, 30.0);
     EXPECT_GE(worstCloud, 20.0);
     // The same last frame without history (same march phase): reprojection must be what makes it good.
+    // Without history the fresh pixels are interpolated (measured 29.5 dB display, 27.7 dB when they
+    // were copied as 4x4 blocks), so the margin is 2 dB, not the 3.9 dB it was.
     uint32_t last = renderer->reprojection.frameIndex - 1;
     dropHistory(*renderer);
     renderer->reprojection.frameIndex = last;
@@ -177,5 +179,5 @@ TEST_F(Reprojection, SlowPanStaysCloseToFullResolution)
     double freshDisplay = psnrDisplay(fresh, full);
     std::printf("last pose without history: cloud PSNR %.1f dB, display PSNR %.1f dB\n", psnrCloud(fresh, full),
                 freshDisplay);
-    EXPECT_GT(psnrDisplay(frame, full), freshDisplay + 3.0);
+    EXPECT_GT(psnrDisplay(frame, full), freshDisplay + 1.5);
 }
