@@ -17,3 +17,8 @@ gtest_discover_tests(test_world_jitter TEST_PREFIX "reprojection." DISCOVERY_TIM
 add_executable(test_flight_path gpu/test_flight_path.cpp gpu/flight_path.cpp)
 target_link_libraries(test_flight_path PRIVATE sky_reprojection_test_support GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_flight_path TEST_PREFIX "reprojection." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+
+# Multi-channel: adjacent frusta agree at the shared edge; same inputs give the same bytes.
+add_executable(test_channels gpu/test_channels.cpp gpu/flight_path.cpp)
+target_link_libraries(test_channels PRIVATE sky_reprojection_test_support GTest::gtest_main sky_warnings)
+gtest_discover_tests(test_channels TEST_PREFIX "reprojection." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
