@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Temporal reprojection (issue 5, reprojection.*): the Bayer phase order and the history limits on the
-// CPU, and on the GPU (lavapipe, validation on, 128x72, test quality): a still view converges to the
+// CPU (and the march block near clouds), and on the GPU (lavapipe, validation on, 128x72, test quality):
+// a still view converges to the
 // full-resolution image, a teleport or an explicit drop leaves no pixel of the old view, and a slow
 // pan stays close to full-resolution renders of every pose.
 //
@@ -180,4 +181,61 @@ TEST_F(Reprojection, SlowPanStaysCloseToFullResolution)
     std::printf("last pose without history: cloud PSNR %.1f dB, display PSNR %.1f dB\n", psnrCloud(fresh, full),
                 freshDisplay);
     EXPECT_GT(psnrDisplay(frame, full), freshDisplay + 1.5);
+}
+
+// A weather swap (setWeather) and a time jump beyond the limit drop history on their own: the frame
+// after either is byte-identical to the same frame (same march phase) rendered from no history, and
+// the drop reason says why. A time step inside the limit keeps history.
+TEST_F(Reprojection, WeatherSwapAndTimeJumpDropHistory)
+{
+    ViewRequest v = reprojectionView();
+    dropHistory(*renderer);
+    for (int k = 0; k < 4; ++k)
+        render(v, reprojectedQuality());
+    auto expectDropped = [&](const ViewRequest& view, const char* what) {
+        uint32_t index = renderer->reprojection.frameIndex;
+        RenderResult after = render(view, reprojectedQuality());
+        std::string why = lastHistoryDropReason(*renderer);
+        EXPECT_FALSE(why.empty()) << what;
+        dropHistory(*renderer);
+        renderer->reprojection.frameIndex = index;
+        RenderResult clean = render(view, reprojectedQuality());
+        EXPECT_EQ(after.cloudRgbaHalf, clean.cloudRgbaHalf) << what << ": history leaked into the frame";
+        return why;
+    };
+    setWeather(*renderer, uniformLayer(0.6f, CloudType::Stratocumulus, 900.0f, 1500.0f));
+    expectDropped(v, "weather swap");
+    ViewRequest later = v;
+    later.unixTimeS += 1;
+    render(later, reprojectedQuality());
+    EXPECT_TRUE(lastHistoryDropReason(*renderer).empty()) << "1 s is inside the time limit";
+    later.unixTimeS += int64_t(kReprojectionMaxTimeJumpS) + 1;
+    std::string why = expectDropped(later, "time jump");
+    EXPECT_NE(why.find("time"), std::string::npos) << why;
+}
+
+TEST(ReprojectionCpu, MarchBlockIsFinerNearAndInsideACloudLayer)
+{
+    std::set<uint32_t> seen;
+    for (uint32_t k = 7; k < 11; ++k)
+        seen.insert(reprojectionPhase(k, 2).y * 2 + reprojectionPhase(k, 2).x);
+    EXPECT_EQ(seen.size(), 4u) << "4 consecutive frames march every position of a 2x2 block";
+    EXPECT_EQ(reprojectionPhase(5, 1), glm::uvec2(0, 0));
+
+    WeatherWindow window;
+    resampleWeatherWindow(uniformLayer(0.7f, CloudType::Stratocumulus, 1500.0f, 2100.0f), 45.0, 7.0, 800000.0,
+                          window, WEATHER_WINDOW_SIZE, 150000.0);
+    struct Case
+    {
+        double altitudeM;
+        uint32_t blockPx;
+    } cases[] = {{1000.0, 4}, {1250.0, 2}, {1500.0, 1}, {1800.0, 1}, {2300.0, 2}, {2500.0, 4}, {9000.0, 4}};
+    for (const Case& c : cases)
+    {
+        MarchBlock b = chooseMarchBlock(window, c.altitudeM);
+        EXPECT_EQ(b.blockPx, c.blockPx) << c.altitudeM << " m: " << b.reason;
+        EXPECT_EQ(b.reason.empty(), c.blockPx == 4) << b.reason;
+    }
+    resampleWeatherWindow(clearSky(), 45.0, 7.0, 800000.0, window, WEATHER_WINDOW_SIZE, 150000.0);
+    EXPECT_EQ(chooseMarchBlock(window, 1800.0).blockPx, 4u) << "no cloud around the eye";
 }
