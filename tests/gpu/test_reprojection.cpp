@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Temporal reprojection (issue 5, reprojection.*): the Bayer phase order and the history limits on the
 // CPU (and the march block near clouds), and on the GPU (lavapipe, validation on, 128x72, test quality):
-// a still view converges to the
-// full-resolution image, a teleport or an explicit drop leaves no pixel of the old view, and a slow
-// pan stays close to full-resolution renders of every pose.
+// a still view converges to the full-resolution image, a teleport, an explicit drop, a weather swap or a
+// time jump leaves no pixel of the old view, and a slow pan stays close to full-resolution renders.
 //
 // PSNR (tests/gpu/image_compare.h) is computed on the cloud image over all pixels, with the peak = the
 // largest channel value of the full-resolution reference. The tone-mapped display PSNR is printed too.
