@@ -1,5 +1,5 @@
-# Temporal reprojection tests (issue 5, reprojection.*): phase order and history limits on the CPU;
-# convergence, teleport and pan PSNR on the GPU with validation on.
+# Temporal reprojection tests (issue 5, reprojection.*): phase order, history limits and march block on
+# the CPU; convergence, teleport, weather swap, time jump and pan PSNR on the GPU with validation on.
 add_library(sky_reprojection_test_support STATIC gpu/scenes.cpp gpu/image_compare.cpp)
 target_link_libraries(sky_reprojection_test_support PUBLIC sky_renderer GTest::gtest sky_warnings)
 
@@ -7,8 +7,8 @@ add_executable(test_reprojection gpu/test_reprojection.cpp)
 target_link_libraries(test_reprojection PRIVATE sky_reprojection_test_support GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_reprojection TEST_PREFIX "reprojection." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
 
-# World-space march jitter (shaders/lib/world_jitter.glsl): the texel function on the CPU, same rays
-# in another screen order and a sub-pixel turn on the GPU.
+# World-space march jitter (shaders/lib/world_jitter.glsl; its CPU test is in unit/test_cloud_math.cpp):
+# the same rays in another screen order, and a sub-pixel turn, on the GPU.
 add_executable(test_world_jitter gpu/test_world_jitter.cpp)
 target_link_libraries(test_world_jitter PRIVATE sky_reprojection_test_support GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_world_jitter TEST_PREFIX "reprojection." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)

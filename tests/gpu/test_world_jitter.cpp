@@ -2,32 +2,21 @@
 // World-space march jitter (issue 5, shaders/lib/world_jitter.glsl): the start offset of a view ray
 // is a function of its earth-fixed direction, not of its screen pixel.
 //
-// On the CPU: the texel function itself. On the GPU (lavapipe, validation on, 128x72, test quality):
-// a view and the same view rolled by 180 degrees march exactly the same rays in the opposite screen
-// order, so with world-space jitter their cloud images agree pixel for pixel (a screen-space jitter
-// gives each ray another offset there), and a full render turned by 0.3 degrees (0.37 pixel) agrees
-// with the first one resampled to its rays.
-#include "shaders/shared/bindings.h"
+// The texel function itself is tested on the CPU in tests/unit/test_cloud_math.cpp. Here, on the GPU
+// (lavapipe, validation on, 128x72, test quality): a view and the same view rolled by 180 degrees march
+// exactly the same rays in the opposite screen order, so with world-space jitter their cloud images
+// agree pixel for pixel (measured 96.7 dB; with the jitter per screen pixel 26.0 dB). And the stability
+// of the full-resolution reference under a sub-pixel turn is measured: two full renders 0.3 degrees
+// (0.37 pixel) apart, directly and with the first resampled to the second's rays. Measured 23.7 and
+// 25.3 dB (23.8 and 25.2 dB with the jitter per pixel): what limits it at this size is cloud detail
+// finer than a pixel (without detail erosion and with 256 steps: 28.1 and 30.1 dB), not the jitter.
 #include "tests/gpu/gpu_fixture.h"
 #include "tests/gpu/image_compare.h"
 #include "tests/gpu/scenes.h"
 
 #include <gtest/gtest.h>
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wfloat-conversion"
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wdouble-promotion"
-namespace glsl
-{
-using namespace glm;
-#include "shaders/lib/world_jitter.glsl"
-}  // namespace glsl
-#pragma GCC diagnostic pop
-
-#include <cmath>
 #include <cstdio>
-#include <set>
 
 using namespace sky;
 using namespace sky::testscenes;
@@ -61,39 +50,6 @@ RenderResult rotated180(const RenderResult& r)
 
 }  // namespace
 
-TEST(WorldJitterCpu, NeighbouringDirectionsReadNeighbouringTexels)
-{
-    const float texel = 0.01f;  // rad
-    // One direction in every face: in range, and a step of one texel angle moves one texel.
-    const glm::vec3 dirs[] = {{1, 0.2f, 0.1f}, {-1, 0.3f, -0.2f}, {0.1f, 1, 0.4f},
-                              {0.2f, -1, 0.1f}, {0.3f, 0.1f, 1}, {-0.2f, 0.4f, -1}};
-    std::set<int> starts;
-    for (glm::vec3 d : dirs)
-    {
-        glm::vec3 u = glm::normalize(d);
-        glm::ivec2 t = glsl::worldJitterTexel(u, texel);
-        ASSERT_GE(t.x, 0);
-        ASSERT_LT(t.x, BLUE_NOISE_SIZE);
-        ASSERT_GE(t.y, 0);
-        ASSERT_LT(t.y, BLUE_NOISE_SIZE);
-        starts.insert(t.x * BLUE_NOISE_SIZE + t.y);
-        EXPECT_EQ(glsl::worldJitterTexel(u, texel), t) << "a function of the direction only";
-    }
-    EXPECT_EQ(starts.size(), 6u) << "each face starts elsewhere in the tile";
-    // Along the +x face's u axis (atan(y/x) grows by the texel angle per texel).
-    int moved = 0;
-    for (int k = 0; k < 200; ++k)
-    {
-        float a0 = -0.37f + 0.0037f * float(k);
-        glm::vec3 p(std::cos(a0), std::sin(a0), 0.05f), q(std::cos(a0 + texel), std::sin(a0 + texel), 0.05f);
-        glm::ivec2 tp = glsl::worldJitterTexel(glm::normalize(p), texel);
-        glm::ivec2 tq = glsl::worldJitterTexel(glm::normalize(q), texel);
-        int dx = (tq.x - tp.x + BLUE_NOISE_SIZE) % BLUE_NOISE_SIZE;
-        moved += dx == 1 && tq.y == tp.y;
-    }
-    EXPECT_GE(moved, 190) << "one texel angle apart is one texel apart (up to rounding at cell edges)";
-}
-
 TEST_F(WorldJitter, SameRaysInTheOppositeScreenOrderGiveTheSameClouds)
 {
     ViewRequest a = reprojectionView();
@@ -118,5 +74,5 @@ TEST_F(WorldJitter, FullRenderTurnedBySubPixelAgreesWithTheFirstResampled)
     double resampled = psnrResampled(resampleCloud(ra, a, b), rb);
     std::printf("full vs full 0.3 deg apart: cloud PSNR direct %.1f dB, A resampled to B's rays %.1f dB\n", direct,
                 resampled);
-    EXPECT_GE(resampled, 25.0);
+    EXPECT_GE(resampled, 24.0);
 }
