@@ -54,14 +54,14 @@ FlightStats flySegment(Renderer& r, ViewRequest& view, const Motion& motion, int
         edges.push_back({w - kEdgeBandPx, w});
     if (motion.turnDegPerS <= 0.0)
         edges.push_back({0, kEdgeBandPx});
-    RenderResult frame, previousReference;
+    RenderResult frame, reference, previousReference;
     ViewRequest previousView;
     for (int k = 0; k < measuredFrames; ++k)
     {
         stepPose(view, motion);
         frame = renderChecked(r, view, reprojected);
         bool dropped = !lastHistoryDropReason(r).empty();
-        RenderResult reference = renderChecked(r, view, full);
+        reference = renderChecked(r, view, full);
         double pc = psnrCloud(frame, reference), pd = psnrDisplay(frame, reference);
         double edgeDb = 1e9, edgeAbs = 0.0;
         for (ColumnBand b : edges)
@@ -93,7 +93,10 @@ FlightStats flySegment(Renderer& r, ViewRequest& view, const Motion& motion, int
         ++stats.frames;
     }
     if (!pngPath.empty())
+    {
         writeDisplayPng(frame, pngPath);
+        writeDisplayPng(reference, pngPath.substr(0, pngPath.size() - 4) + "-full.png");
+    }
     return stats;
 }
 

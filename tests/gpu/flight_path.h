@@ -48,7 +48,8 @@ constexpr uint32_t kEdgeBandPx = 8;
  * reprojected frames each followed by a full render of the same pose. Prints one line per measured
  * frame prefixed by `name`, with the reference's own consistency: the previous reference resampled to
  * this frame's rays (rotation only, bilinear) against this reference, the floor that sub-pixel cloud
- * detail sets for any reprojection at this size. When `pngPath` is not empty, the last reprojected frame is written there.
+ * detail sets for any reprojection at this size. When `pngPath` (ending in ".png") is not empty, the
+ * last reprojected frame is written there and its full render beside it ("...-full.png"), 4x enlarged.
  */
 FlightStats flySegment(Renderer& r, ViewRequest& view, const Motion& motion, int warmFrames, int measuredFrames,
                        const std::string& name, const std::string& pngPath = "");
