@@ -85,7 +85,7 @@ vec3 ambientLight(float heightFraction)
 // March from tEnter to tExit: cheap samples with double steps until a cloud is hit, full samples inside,
 // back to cheap after 6 empty full samples; step length grows with distance; blue-noise start offset;
 // stop when the transmittance falls below 0.01 (DESIGN §3 "March").
-void marchClouds(vec3 dir, float tEnter, float tExit, ivec2 pixel, inout vec3 radiance, inout float transmittance,
+void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout float transmittance,
                  inout float depthWeighted, inout float depthWeight)
 {
     vec3 lightDir = keyLightDirection();
@@ -96,8 +96,12 @@ void marchClouds(vec3 dir, float tEnter, float tExit, ivec2 pixel, inout vec3 ra
     // (long grazing paths through a layer get 1-10% steps; short ones keep the base step).
     float ratio = max(tExit, 1.0f) / max(tEnter + baseStep, baseStep);
     float growth = clamp(pow(ratio, 1.0f / float(frame.march.x)) - 1.0f, 0.005f, 0.015f);
-    // Blue-noise start offset, decorrelated per frame by the golden ratio (temporal accumulation).
-    float jitter = fract(texelFetch(blueNoise, pixel % BLUE_NOISE_SIZE, 0).x + 0.61803399f * float(frame.image.z));
+    // Blue-noise start offset read at the ray's earth-fixed direction (world_jitter.glsl), not at its
+    // pixel: the noise stays on the clouds when the view turns, and channels agree. Decorrelated per
+    // frame by the golden ratio for accumulated full renders (frame.image.z; 0 in reprojected frames, so
+    // that a pixel marched again gives the same value and a still view converges to the full render).
+    ivec2 jitterTexel = worldJitterTexel(toNoiseFrame(dir), frame.worldJitter.x);
+    float jitter = fract(texelFetch(blueNoise, jitterTexel, 0).x + 0.61803399f * float(frame.image.z));
     float t = tEnter + jitter * max(baseStep, tEnter * growth);
     bool full = false;
     int emptyFull = 0;

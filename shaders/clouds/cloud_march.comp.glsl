@@ -14,6 +14,7 @@
 #include "shaders/lib/phase.glsl"
 #include "shaders/lib/atmosphere.glsl"
 #include "shaders/lib/window_warp.glsl"
+#include "shaders/lib/world_jitter.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE_2D, local_size_y = WORKGROUP_SIZE_2D) in;
 
@@ -36,8 +37,9 @@ layout(binding = 9, r32f) uniform writeonly image2D depthOut;
 
 void main()
 {
-    // Reprojected frames (frame.reprojection.x = 4) march one pixel of each 4x4 block and store it at
-    // the block's texel of a block-resolution image; full-resolution frames march every pixel.
+    // Reprojected frames (frame.reprojection.x = B: 4, or 2 or 1 near clouds) march one pixel of each
+    // BxB block and store it at the block's texel of a block-resolution image; full-resolution frames
+    // march every pixel.
     uint block = max(frame.reprojection.x, 1u);
     uvec2 id = permutedId(gl_GlobalInvocationID.xy, (frame.image.y + block - 1u) / block);
     ivec2 pixel = ivec2(id * block + uvec2(frame.reprojection.y, frame.reprojection.z));
@@ -69,7 +71,7 @@ void main()
     }
 
     if (hit)
-        marchClouds(dir, tEnter, tExit, pixel, radiance, transmittance, depthWeighted, depthWeight);
+        marchClouds(dir, tEnter, tExit, radiance, transmittance, depthWeighted, depthWeight);
 
     if (!highInFront && high.alpha > 0.0f)
     {

@@ -22,7 +22,7 @@ struct FrameParams
     vec4 sunIrradiance;  // rgb: solar irradiance at the top of the atmosphere (renderer units); w: unused
     vec4 moonDirection;  // xyz: unit direction to the moon (ENU); w: unused
     vec4 moonIrradiance; // rgb: moonlight irradiance at the top of the atmosphere (phase applied); w: unused
-    vec4 enuToEcef0;     // rows of the ENU -> earth-fixed rotation, used only for noise lookups
+    vec4 enuToEcef0;     // rows of the ENU -> earth-fixed rotation, used for noise lookups and the march jitter
     vec4 enuToEcef1;
     vec4 enuToEcef2;
     vec4 layerNoiseOffsetM[MAX_CLOUD_LAYERS + 1];  // xyz: noise-space offset per volumetric layer, then the high layer (m)
@@ -51,6 +51,9 @@ struct FrameParams
     // (m east, north of the eye) through windowAxes.
     vec4 windowOffsetM;     // xy: the eye's position on the window plane (m); zw: unused
     vec4 windowAxes;        // xy: window-plane image of 1 m east of the eye; zw: of 1 m north
+    // World-space march jitter (shaders/lib/world_jitter.glsl). x: angle of one jitter texel (rad), one
+    // pixel at the image centre, so two channels of the same size and field of view share the texels.
+    vec4 worldJitter;
 };
 
 // frame flags

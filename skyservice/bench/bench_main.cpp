@@ -16,10 +16,10 @@
 // messages), 2 bad command line.
 //
 // --mode reprojected times the temporal reprojection loop (skyservice/render/reprojection.h): each call
-// marches one pixel of every 4x4 block ("march") and rebuilds the full image from the previous call's
-// ("reconstruct"). The camera is still, as in full mode, unless --speed V flies it along its heading
-// (V/60 m per frame: the CPU setup then shows what a moving eye costs); setWeather drops the history
-// per scene.
+// marches one pixel of every 4x4 block ("march"; 2x2 or every pixel near or inside a cloud layer, the
+// JSON's marchBlockPx) and rebuilds the full image from the previous call's ("reconstruct"). The camera
+// is still, as in full mode, unless --speed V flies it along its heading (V/60 m per frame: the CPU
+// setup then shows what a moving eye costs); setWeather drops the history per scene.
 #include "skyservice/bench/bench_report.h"
 #include "skyservice/output/contact_sheet.h"
 #include "skyservice/output/image_files.h"
@@ -153,6 +153,8 @@ SkyStatus runScene(Renderer& r, const BenchOptions& o, const BenchScene& scene, 
     checked.accumulationFrames = 1;
     SKY_TRY(renderView(r, request, checked, result));
     out.sunElevationDeg = result.sunElevationDeg;
+    out.marchBlockPx = result.marchBlockPx;
+    out.marchBlockReason = result.marchBlockReason;
     checkPicture(result, out);
     if (!o.sheet.empty())
         tiles.push_back(shrink(result.displayRgba8, result.width, result.height));

@@ -107,6 +107,8 @@ nlohmann::json benchToJson(const BenchRun& run)
                           {"sunElevationDeg", s.sunElevationDeg},
                           {"cloudFraction", s.cloudFraction},
                           {"allFinite", s.allFinite},
+                          {"marchBlockPx", s.marchBlockPx},
+                          {"marchBlockReason", s.marchBlockReason},
                           {"gpuMs", passes},
                           {"wallMs", summaryJson(summarizeSamples(s.wallMs))},
                           {"cpuSetupMs", summaryJson(summarizeSamples(s.cpuSetupMs))}});

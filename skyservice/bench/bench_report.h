@@ -41,6 +41,8 @@ struct BenchSceneResult
     double sunElevationDeg = 0;
     double cloudFraction = 0;         ///< share of pixels with cloud alpha > 0.5 (one checked frame)
     bool allFinite = true;            ///< every value of the checked frame finite and >= 0
+    uint32_t marchBlockPx = 1;        ///< RenderResult::marchBlockPx of the checked frame (4, or 2/1 near clouds)
+    std::string marchBlockReason;     ///< and why it was not 4
 };
 
 /// Device allocations (MemoryTracker) after the scenes ran at the bench size.

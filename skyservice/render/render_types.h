@@ -77,6 +77,11 @@ struct RenderResult
     double moonAzimuthDeg = 0, moonElevationDeg = 0, moonIlluminatedFraction = 0;
     double exposure = 1;
     bool moonIsKeyLight = false;
+    /// Reprojected frames: one pixel of every marchBlockPx^2 was marched (4 normally; 2 near and 1
+    /// inside a cloud layer, skyservice/render/reprojection.h), and why it was not 4 ("" when it was).
+    /// Full-resolution frames: 1 and "".
+    uint32_t marchBlockPx = 1;
+    std::string marchBlockReason;
     /// Cloud shadow map (when ViewRequest::shadowMap): shadowMapSize^2 texels, row-major, north row first,
     /// west column first (skyservice/render/shadow_map.h); gpuMs["shadowMap"] holds its GPU time.
     uint32_t shadowMapSize = 0;               ///< texels per side; 0 when no shadow map was rendered

@@ -100,42 +100,59 @@ SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height)
     return endOneShot(r.ctx, shot);
 }
 
-// The reprojection images: block-resolution fresh pixels and the two full-resolution histories.
-SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height)
+// The reprojection images: block-resolution fresh pixels and the two full-resolution histories. The
+// fresh images only grow (to the finest block used so far) and are replaced without touching history,
+// so that flying into a cloud (block 4 -> 2 -> 1) keeps the history.
+SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height, uint32_t blockPx)
 {
-    uint32_t blocksX = (width + 3) / 4, blocksY = (height + 3) / 4;
-    if (r.freshCloudImage.image && r.freshCloudImage.extent.width == blocksX &&
-        r.freshCloudImage.extent.height == blocksY && r.historyCloud[0].extent.width == width &&
-        r.historyCloud[0].extent.height == height)
-        return SkyStatus::success();
-    VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize only: never in steady state
-    Image* all[] = {&r.freshCloudImage, &r.freshDepthImage, &r.historyCloud[0], &r.historyCloud[1],
-                    &r.historyDepth[0], &r.historyDepth[1]};
-    for (Image* img : all)
-        destroyImage(r.ctx, r.memory, *img);
-    r.reprojection.valid = false;
-    ImageDesc d;
-    d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-    d.width = blocksX;
-    d.height = blocksY;
-    d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-    SKY_TRY(createImage(r.ctx, r.memory, r.freshCloudImage, d, "fresh cloud radiance (1/16)"));
-    d.format = VK_FORMAT_R32_SFLOAT;
-    SKY_TRY(createImage(r.ctx, r.memory, r.freshDepthImage, d, "fresh cloud depth (1/16)"));
-    d.width = width;
-    d.height = height;
-    for (int k = 0; k < 2; ++k)
-    {
-        d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-        SKY_TRY(createImage(r.ctx, r.memory, r.historyCloud[k], d, "cloud radiance history"));
-        d.format = VK_FORMAT_R32_SFLOAT;
-        SKY_TRY(createImage(r.ctx, r.memory, r.historyDepth[k], d, "cloud depth history"));
-    }
     OneShot shot;
-    SKY_TRY(beginOneShot(r.ctx, shot));
-    for (Image* img : all)
-        transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-    return endOneShot(r.ctx, shot);
+    bool fresh = false;
+    if (!(r.historyCloud[0].image && r.historyCloud[0].extent.width == width &&
+          r.historyCloud[0].extent.height == height))
+    {
+        VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize only: never in steady state
+        for (Image* img : {&r.freshCloudImage, &r.freshDepthImage, &r.historyCloud[0], &r.historyCloud[1],
+                           &r.historyDepth[0], &r.historyDepth[1]})
+            destroyImage(r.ctx, r.memory, *img);
+        r.reprojection.valid = false;
+        ImageDesc d;
+        d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+        d.width = width;
+        d.height = height;
+        for (int k = 0; k < 2; ++k)
+        {
+            d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+            SKY_TRY(createImage(r.ctx, r.memory, r.historyCloud[k], d, "cloud radiance history"));
+            d.format = VK_FORMAT_R32_SFLOAT;
+            SKY_TRY(createImage(r.ctx, r.memory, r.historyDepth[k], d, "cloud depth history"));
+        }
+        SKY_TRY(beginOneShot(r.ctx, shot));
+        for (Image* img : {&r.historyCloud[0], &r.historyCloud[1], &r.historyDepth[0], &r.historyDepth[1]})
+            transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+        fresh = true;
+    }
+    uint32_t blocksX = (width + blockPx - 1) / blockPx, blocksY = (height + blockPx - 1) / blockPx;
+    if (!(r.freshCloudImage.image && r.freshCloudImage.extent.width >= blocksX &&
+          r.freshCloudImage.extent.height >= blocksY))
+    {
+        VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // first frame at a finer block only
+        destroyImage(r.ctx, r.memory, r.freshCloudImage);
+        destroyImage(r.ctx, r.memory, r.freshDepthImage);
+        ImageDesc d;
+        d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+        d.width = blocksX;
+        d.height = blocksY;
+        d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+        SKY_TRY(createImage(r.ctx, r.memory, r.freshCloudImage, d, "fresh cloud radiance (one pixel per block)"));
+        d.format = VK_FORMAT_R32_SFLOAT;
+        SKY_TRY(createImage(r.ctx, r.memory, r.freshDepthImage, d, "fresh cloud depth (one pixel per block)"));
+        if (!fresh)
+            SKY_TRY(beginOneShot(r.ctx, shot));
+        for (Image* img : {&r.freshCloudImage, &r.freshDepthImage})
+            transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+        fresh = true;
+    }
+    return fresh ? endOneShot(r.ctx, shot) : SkyStatus::success();
 }
 
 SkyStatus checkRequest(const ViewRequest& req)
@@ -224,9 +241,10 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
     recordAtmosphere(r, cmd, camera, sunMoon, in);
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsSkyView);
-    // Reprojected: one invocation per 4x4 block into the block-resolution fresh images.
-    uint32_t marchX = reprojected ? (request.width + 3) / 4 : request.width;
-    uint32_t marchY = reprojected ? (request.height + 3) / 4 : request.height;
+    // Reprojected: one invocation per block (4x4, or finer near clouds) into the fresh images.
+    const uint32_t block = reprojected ? r.reprojection.block.blockPx : 1u;
+    uint32_t marchX = (request.width + block - 1) / block;
+    uint32_t marchY = (request.height + block - 1) / block;
     const Image& marchCloud = reprojected ? r.freshCloudImage : r.cloudImage;
     const Image& marchDepth = reprojected ? r.freshDepthImage : r.depthImage;
     dispatch(r.ctx, cmd, r.cloudProgram, marchX, marchY, 1, nullptr, 0,
@@ -398,17 +416,22 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     if (!r.weather)
         setWeather(r, WeatherSnapshot{});  // no weather given: an empty sky
     SKY_TRY(updateWeatherWindow(r, camera, quality));
+    const WeatherWindow& window = r.window->window;
+    const EyeOnWindow eyeOnWindow =
+        placeEyeOnWindow(window.centreLatDeg, window.centreLonDeg, camera.eye.latDeg, camera.eye.lonDeg);
     SKY_TRY(ensureOutputImages(r, request.width, request.height));
     if (quality.reprojected)
-        SKY_TRY(ensureReprojectionImages(r, request.width, request.height));
+    {
+        r.reprojection.block = chooseMarchBlock(window, camera.eye.altitudeM, eyeOnWindow.offsetM);
+        SKY_TRY(ensureReprojectionImages(r, request.width, request.height, r.reprojection.block.blockPx));
+    }
 
     FrameInputs in;
     in.camera = &camera;
     in.sunMoon = &sunMoon;
-    in.window = &r.window->window;
+    in.window = &window;
     in.summary = &r.window->summary;
-    in.eyeOnWindow = placeEyeOnWindow(r.window->window.centreLatDeg, r.window->window.centreLonDeg,
-                                      camera.eye.latDeg, camera.eye.lonDeg);
+    in.eyeOnWindow = eyeOnWindow;
     in.request = &request;
     in.quality = &quality;
     in.animationTimeS = double(request.unixTimeS - r.weather->validTimeUnixS);
@@ -516,6 +539,8 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     result.moonIlluminatedFraction = sunMoon.moonIlluminatedFraction;
     result.exposure = light.exposure;
     result.moonIsKeyLight = moonIsKeyLight(sunMoon);
+    result.marchBlockPx = quality.reprojected ? r.reprojection.block.blockPx : 1u;
+    result.marchBlockReason = quality.reprojected ? r.reprojection.block.reason : "";
     if (request.shadowMap)
         SKY_TRY(renderShadowMap(r, request, quality, camera, sunMoon, result));
     return SkyStatus::success();

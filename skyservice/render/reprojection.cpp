@@ -1,28 +1,90 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/reprojection.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace sky
 {
 namespace
 {
 
-// Ordered-dither (Bayer) matrix of size 4 (Bayer 1973): entry k is visited on frame k mod 16.
+// Ordered-dither (Bayer) matrices of size 4 and 2 (Bayer 1973): entry k is visited on frame k mod n^2.
 constexpr uint32_t kBayer4[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
+constexpr uint32_t kBayer2[2][2] = {{0, 2}, {3, 1}};
 
 vec4 v4(const glm::dvec3& v, double w) { return vec4(float(v.x), float(v.y), float(v.z), float(w)); }
 
 }  // namespace
 
-glm::uvec2 reprojectionPhase(uint32_t frameIndex)
+glm::uvec2 reprojectionPhase(uint32_t frameIndex, uint32_t blockPx)
 {
+    if (blockPx == 2)
+    {
+        uint32_t k = frameIndex % 4u;
+        for (uint32_t y = 0; y < 2; ++y)
+            for (uint32_t x = 0; x < 2; ++x)
+                if (kBayer2[y][x] == k)
+                    return {x, y};
+    }
+    if (blockPx != 4)
+        return {0, 0};  // block 1: every pixel
     uint32_t k = frameIndex % 16u;
     for (uint32_t y = 0; y < 4; ++y)
         for (uint32_t x = 0; x < 4; ++x)
             if (kBayer4[y][x] == k)
                 return {x, y};
     return {0, 0};  // unreachable: the matrix holds 0..15
+}
+
+MarchBlock chooseMarchBlock(const WeatherWindow& window, double eyeAltitudeM, const glm::dvec2& eyeOnWindowM)
+{
+    MarchBlock best;
+    if (window.sizeTexels == 0 || window.texels.empty())
+        return best;
+    // Texels whose true position lies within the radius of the eye (the warp makes the texels near the
+    // centre ~1 km), and always the four around the eye (a window without warp has texels larger than
+    // the radius). The eye's texel: its warped plane position in texel units.
+    const int64_t n = int64_t(window.sizeTexels);
+    const glm::dvec2 q = windowWarpM(eyeOnWindowM, window.halfExtentM, window.warpRadiusM) / window.texelSizeM +
+                         0.5 * double(n) - 0.5;
+    const int64_t ci = int64_t(std::floor(q.x)), cj = int64_t(std::floor(q.y));  // the texel centre below-left
+    const int64_t reach = 8;  // texels searched on each side of the eye; more than 2 km at any warp
+    char text[160];
+    for (uint32_t k = 0; k < MAX_CLOUD_LAYERS; ++k)
+    {
+        float coverage = 0.0f;
+        double base = 1e30, top = -1e30;
+        for (int64_t j = std::max<int64_t>(0, cj - reach); j < std::min(n, cj + reach + 1); ++j)
+            for (int64_t i = std::max<int64_t>(0, ci - reach); i < std::min(n, ci + reach + 1); ++i)
+            {
+                bool aroundEye = (i == ci || i == ci + 1) && (j == cj || j == cj + 1);
+                const glm::dvec2 p = window.texelPositionM(uint32_t(i), uint32_t(j));
+                if (!aroundEye && glm::length(p - eyeOnWindowM) > kNearCloudRadiusM)
+                    continue;
+                const glm::vec4& t = window.at(2 * k, uint32_t(i), uint32_t(j));
+                if (!(t.x > kNearCloudMinCoverage))
+                    continue;
+                coverage = std::max(coverage, t.x);
+                base = std::min(base, double(t.y));
+                top = std::max(top, double(t.z));
+            }
+        if (coverage <= 0.0f)
+            continue;
+        uint32_t block = 4;
+        if (eyeAltitudeM >= base && eyeAltitudeM <= top)
+            block = 1;
+        else if (eyeAltitudeM >= base - kNearCloudM && eyeAltitudeM <= top + kNearCloudM)
+            block = 2;
+        if (block >= best.blockPx)
+            continue;
+        std::snprintf(text, sizeof text, "eye %s cloud layer %u (%.0f-%.0f m, coverage %.2f)",
+                      block == 1 ? "inside" : "near", k, base, top, double(coverage));
+        best.blockPx = block;
+        best.reason = text;
+    }
+    return best;
 }
 
 bool historyUsable(const ReprojectionHistory& history, const ViewRequest& view, const CameraFrame& camera,
@@ -49,8 +111,9 @@ bool historyUsable(const ReprojectionHistory& history, const ViewRequest& view, 
 void fillReprojectionParams(FrameParams& frame, const ReprojectionHistory& history, const ViewRequest& view,
                             const CameraFrame& camera, bool useHistory)
 {
-    glm::uvec2 phase = reprojectionPhase(history.frameIndex);
-    frame.reprojection = uvec4(4u, phase.x, phase.y, useHistory ? 1u : 0u);
+    uint32_t block = history.block.blockPx;
+    glm::uvec2 phase = reprojectionPhase(history.frameIndex, block);
+    frame.reprojection = uvec4(block, phase.x, phase.y, useHistory ? 1u : 0u);
     frame.previousRight = vec4(0.0f);
     frame.previousUp = vec4(0.0f);
     frame.previousForward = vec4(0.0f);

@@ -11,6 +11,7 @@
 #pragma once
 
 #include "shaders/shared/frame_params.h"
+#include "skyservice/earth/weather_window.h"
 #include "skyservice/render/render_types.h"
 
 #include <glm/glm.hpp>
@@ -28,6 +29,25 @@ constexpr double kReprojectionMaxTurnDeg = 30.0;
 /// ... or when the view time jumps more than this (s): wind drift and sun move the clouds.
 constexpr double kReprojectionMaxTimeJumpS = 60.0;
 
+/// The eye marches one pixel of every 2x2 block instead of 4x4 when it is closer than this (m, vertically)
+/// to the base or top of a cloud layer with cloud around it: clouds that near move by several pixels per
+/// frame and uncover what history never saw (our choice: at 250 m/s a cloud 300 m away moves ~0.8
+/// degrees per 60 Hz frame).
+constexpr double kNearCloudM = 300.0;
+/// ... and every pixel (block 1) when it is between a layer's base and top: inside a cloud the nearest
+/// cloud is metres away and reprojection has nothing to offer.
+/// "Around the eye" is this far horizontally (m): the weather window's texels near the eye are ~1 km.
+constexpr double kNearCloudRadiusM = 2000.0;
+/// Coverage below this counts as clear air for that decision.
+constexpr float kNearCloudMinCoverage = 0.02f;
+
+/// How many pixels a reprojected frame marches, and why.
+struct MarchBlock
+{
+    uint32_t blockPx = 4;  ///< 4: one pixel of every 4x4 block; 2: of every 2x2; 1: every pixel
+    std::string reason;    ///< why not 4 ("" when 4)
+};
+
 /// What the renderer remembers of the last reprojected frame.
 struct ReprojectionHistory
 {
@@ -37,20 +57,31 @@ struct ReprojectionHistory
     ViewRequest lastView;        ///< the view of the last reprojected frame
     CameraFrame lastCamera;      ///< its camera, in double
     std::string lastDropReason;  ///< why the last reprojected frame did not use history ("" if it did)
+    MarchBlock block;            ///< the march block of the frame being (or last) rendered
 };
 
-/// Position (x, y in 0..3) of the marched pixel inside every 4x4 block on frame `frameIndex`: the 4x4
-/// Bayer matrix read in order, so that any 16 consecutive frames march every position once and
-/// consecutive frames are far apart inside the block.
-glm::uvec2 reprojectionPhase(uint32_t frameIndex);
+/// Position (x, y in 0..blockPx-1) of the marched pixel inside every block on frame `frameIndex`: the
+/// Bayer matrix of that size read in order, so that any blockPx^2 consecutive frames march every
+/// position once and consecutive frames are far apart inside the block. blockPx is 4, 2 or 1.
+glm::uvec2 reprojectionPhase(uint32_t frameIndex, uint32_t blockPx = 4);
+
+/**
+ * The march block for an eye at `eyeAltitudeM` (m above the ellipsoid) in `window`: 1 inside a
+ * volumetric layer (between its base and top, coverage above kNearCloudMinCoverage within
+ * kNearCloudRadiusM), 2 within kNearCloudM of such a layer, else 4. `eyeOnWindowM` is where the eye lies
+ * on the window plane (m; earth/window_lattice.h: windows are centred on a lattice node near the eye).
+ */
+MarchBlock chooseMarchBlock(const WeatherWindow& window, double eyeAltitudeM,
+                            const glm::dvec2& eyeOnWindowM = glm::dvec2(0.0));
 
 /// Whether the last frame can be reprojected into `view`. If not, `why` names the reason (first frame,
 /// size or field of view change, eye moved, turned, or time jumped beyond the limits above).
 bool historyUsable(const ReprojectionHistory& history, const ViewRequest& view, const CameraFrame& camera,
                    std::string& why);
 
-/// Fills frame.reprojection, frame.previousRight/Up/Forward and frame.previousEye for a reprojected
-/// frame on `camera` (useHistory false: the reconstruct pass ignores the history images).
+/// Fills frame.reprojection (block size history.block.blockPx, its phase), frame.previousRight/Up/Forward
+/// and frame.previousEye for a reprojected frame on `camera` (useHistory false: the reconstruct pass
+/// ignores the history images).
 void fillReprojectionParams(FrameParams& frame, const ReprojectionHistory& history, const ViewRequest& view,
                             const CameraFrame& camera, bool useHistory);
 

@@ -31,6 +31,14 @@ protected:
         delete renderer;
         renderer = nullptr;
     }
+    /// renderView on the suite's renderer; a failure fails the test.
+    static RenderResult renderOk(const ViewRequest& view, const QualitySettings& quality)
+    {
+        RenderResult result;
+        SkyStatus s = renderView(*renderer, view, quality, result);
+        EXPECT_TRUE(s.ok()) << s.message;
+        return result;
+    }
     void TearDown() override
     {
         EXPECT_EQ(renderer->ctx.validationMessages.load(), 0u) << "Vulkan validation messages";

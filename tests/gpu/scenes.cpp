@@ -281,3 +281,25 @@ WeatherSnapshot highLayer(float coverage, CloudType type, float altitudeM)
 }
 
 }  // namespace sky::testscenes
+
+namespace sky::testscenes
+{
+
+QualitySettings reprojectedQuality()
+{
+    QualitySettings q = testQuality();
+    q.reprojected = true;
+    return q;
+}
+
+WeatherSnapshot reprojectionWeather() { return uniformLayer(0.4f, CloudType::Cumulus, 1200.0f, 3000.0f); }
+
+ViewRequest reprojectionView()
+{
+    ViewRequest v = lookUp(45.0, 7.0, 200.0, 12.0, "2026-06-21T12:00:00Z");
+    v.width = 128;
+    v.height = 72;
+    return v;
+}
+
+}  // namespace sky::testscenes

@@ -89,3 +89,17 @@ namespace sky::testscenes
 WeatherSnapshot highLayer(float coverage, CloudType type, float altitudeM);
 
 }  // namespace sky::testscenes
+
+namespace sky::testscenes
+{
+
+// --- Temporal reprojection (issue 5, tests/gpu/test_reprojection.cpp and its siblings) ---
+
+/// testQuality() with reprojection on.
+QualitySettings reprojectedQuality();
+/// Scattered cumulus (coverage 0.4, 1200-3000 m) seen from 200 m, 12 degrees above the horizon,
+/// looking north at 128x72: cloud edges, sky gaps and depth from ~1 km to the horizon.
+WeatherSnapshot reprojectionWeather();
+ViewRequest reprojectionView();
+
+}  // namespace sky::testscenes

@@ -16,11 +16,13 @@ using namespace glm;
 #include "shaders/lib/shell.glsl"
 #include "shaders/lib/cloud_shape.glsl"
 #include "shaders/lib/noise.glsl"
+#include "shaders/lib/world_jitter.glsl"
 }  // namespace glsl
 #pragma GCC diagnostic pop
 
 #include <cmath>
 #include <random>
+#include <set>
 
 namespace
 {
@@ -214,4 +216,39 @@ TEST(CloudMath, BaseShapeStatisticsMatchTheEqualisationConstants)
             above += e > 1.0f - c ? 1.0 : 0.0;
         EXPECT_NEAR(above / n, double(c), 0.04) << "coverage " << c;
     }
+}
+
+// World-space march jitter (shaders/lib/world_jitter.glsl, issue 5): a function of the direction only,
+// in range, each cube face elsewhere in the tile, one texel angle apart is one texel apart.
+TEST(WorldJitter, NeighbouringDirectionsReadNeighbouringTexels)
+{
+    const float texel = 0.01f;  // rad
+    // One direction in every face: in range, and a step of one texel angle moves one texel.
+    const glm::vec3 dirs[] = {{1, 0.2f, 0.1f}, {-1, 0.3f, -0.2f}, {0.1f, 1, 0.4f},
+                              {0.2f, -1, 0.1f}, {0.3f, 0.1f, 1}, {-0.2f, 0.4f, -1}};
+    std::set<int> starts;
+    for (glm::vec3 d : dirs)
+    {
+        glm::vec3 u = glm::normalize(d);
+        glm::ivec2 t = glsl::worldJitterTexel(u, texel);
+        ASSERT_GE(t.x, 0);
+        ASSERT_LT(t.x, BLUE_NOISE_SIZE);
+        ASSERT_GE(t.y, 0);
+        ASSERT_LT(t.y, BLUE_NOISE_SIZE);
+        starts.insert(t.x * BLUE_NOISE_SIZE + t.y);
+        EXPECT_EQ(glsl::worldJitterTexel(u, texel), t) << "a function of the direction only";
+    }
+    EXPECT_EQ(starts.size(), 6u) << "each face starts elsewhere in the tile";
+    // Along the +x face's u axis (atan(y/x) grows by the texel angle per texel).
+    int moved = 0;
+    for (int k = 0; k < 200; ++k)
+    {
+        float a0 = -0.37f + 0.0037f * float(k);
+        glm::vec3 p(std::cos(a0), std::sin(a0), 0.05f), q(std::cos(a0 + texel), std::sin(a0 + texel), 0.05f);
+        glm::ivec2 tp = glsl::worldJitterTexel(glm::normalize(p), texel);
+        glm::ivec2 tq = glsl::worldJitterTexel(glm::normalize(q), texel);
+        int dx = (tq.x - tp.x + BLUE_NOISE_SIZE) % BLUE_NOISE_SIZE;
+        moved += dx == 1 && tq.y == tp.y;
+    }
+    EXPECT_GE(moved, 190) << "one texel angle apart is one texel apart (up to rounding at cell edges)";
 }

@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+// Image comparisons of the reprojection tests (issue 5): PSNR of the cloud image and of the display
+// image, over the whole frame or a band of columns, and one full render resampled into another view.
+//
+// Cloud-image PSNR is over the four channels of RenderResult::cloudRgbaHalf (premultiplied linear
+// radiance rgb and alpha) with the peak = the largest channel value of the reference; display PSNR
+// is over the tone-mapped sRGB bytes (rgb and the constant alpha), peak 255.
+#pragma once
+
+#include "skyservice/render/renderer.h"
+
+#include <string>
+#include <vector>
+
+namespace sky::testscenes
+{
+
+/// Columns [x0, x1) of the image (all columns by default).
+struct ColumnBand
+{
+    uint32_t x0 = 0;
+    uint32_t x1 = 0xffffffffu;
+};
+
+double psnrCloud(const RenderResult& test, const RenderResult& reference, ColumnBand band = {});
+double psnrDisplay(const RenderResult& test, const RenderResult& reference, ColumnBand band = {});
+/// Mean absolute difference of the cloud image over `band`, divided by the reference's peak.
+double meanAbsCloudError(const RenderResult& test, const RenderResult& reference, ColumnBand band = {});
+
+/// Cloud image of `source` (rendered for `sourceView`) resampled bilinearly at the pixel rays of
+/// `targetView` (same eye position; only the orientation may differ). Pixels whose ray falls outside
+/// the source image are flagged in `valid`.
+struct Resampled
+{
+    std::vector<float> cloudRgba;  ///< 4 floats per target pixel
+    std::vector<uint8_t> valid;    ///< 1 where the ray lands inside the source image
+};
+Resampled resampleCloud(const RenderResult& source, const ViewRequest& sourceView, const ViewRequest& targetView);
+/// PSNR of a resampled cloud image against a render of the target view, over valid pixels.
+double psnrResampled(const Resampled& test, const RenderResult& reference);
+
+/// Writes the display image as a PNG, each pixel as a `scale` x `scale` square (for looking at a
+/// 128x72 frame by eye; tests do not read it back).
+void writeDisplayPng(const RenderResult& r, const std::string& path, uint32_t scale = 4);
+
+}  // namespace sky::testscenes
