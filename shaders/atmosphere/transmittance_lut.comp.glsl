@@ -9,7 +9,7 @@
 
 layout(local_size_x = WORKGROUP_SIZE_2D, local_size_y = WORKGROUP_SIZE_2D) in;
 
-layout(set = 0, binding = ATMOSPHERE_BINDING_PARAMS, std140) readonly buffer AtmosphereBlock
+layout(set = 0, binding = ATMOSPHERE_BINDING_PARAMS, std140) PARAMS_BLOCK AtmosphereBlock
 {
     AtmosphereParams atmosphere;
 };

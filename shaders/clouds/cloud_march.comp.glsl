@@ -18,8 +18,8 @@
 
 layout(local_size_x = WORKGROUP_SIZE_2D, local_size_y = WORKGROUP_SIZE_2D) in;
 
-layout(binding = 0, std140) readonly buffer FrameBlock { FrameParams frame; };
-layout(binding = 1, std140) readonly buffer AtmosphereBlock { AtmosphereParams atmosphere; };
+layout(binding = 0, std140) PARAMS_BLOCK FrameBlock { FrameParams frame; };
+layout(binding = 1, std140) PARAMS_BLOCK AtmosphereBlock { AtmosphereParams atmosphere; };
 layout(binding = 2) uniform sampler2DArray weatherWindow;
 layout(binding = 3) uniform sampler3D baseNoise;
 layout(binding = 4) uniform sampler3D detailNoise;

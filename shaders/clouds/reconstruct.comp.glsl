@@ -19,7 +19,7 @@
 
 layout(local_size_x = WORKGROUP_SIZE_2D, local_size_y = WORKGROUP_SIZE_2D) in;
 
-layout(binding = 0, std140) readonly buffer FrameBlock { FrameParams frame; };
+layout(binding = 0, std140) PARAMS_BLOCK FrameBlock { FrameParams frame; };
 layout(binding = 1, rgba16f) uniform readonly image2D freshCloud;   // block resolution
 layout(binding = 2, r32f) uniform readonly image2D freshDepth;      // block resolution
 layout(binding = 3, rgba16f) uniform readonly image2D historyCloud; // previous frame, full resolution

@@ -16,7 +16,7 @@
 
 layout(local_size_x = WORKGROUP_SIZE_2D, local_size_y = WORKGROUP_SIZE_2D) in;
 
-layout(binding = SHADOW_BINDING_FRAME, std140) readonly buffer FrameBlock { FrameParams frame; };
+layout(binding = SHADOW_BINDING_FRAME, std140) PARAMS_BLOCK FrameBlock { FrameParams frame; };
 layout(binding = SHADOW_BINDING_WEATHER) uniform sampler2DArray weatherWindow;
 layout(binding = SHADOW_BINDING_BASE_NOISE) uniform sampler3D baseNoise;
 layout(binding = SHADOW_BINDING_DETAIL_NOISE) uniform sampler3D detailNoise;

@@ -23,4 +23,15 @@
 // 256 texels over the default 1600 km gives 6.25 km texels, finer than 0.25-degree model data.
 #define WEATHER_WINDOW_SIZE 256
 
+// How the shaders see the per-frame and atmosphere parameter blocks: uniform buffers (NVIDIA reads them
+// through its constant cache: the 1080p march is 22% faster than with storage buffers, measured on an
+// H200, BENCHMARKS.md), or std140 readonly storage buffers in the `.storage.spv` variant that CMake
+// builds of every shader with SKY_PARAMS_IN_STORAGE_BUFFERS (lavapipe, Mesa 22.3, leaks ~0.5 MB per
+// frame with uniform buffers bound through push descriptors; skyservice/vk/context.h picks).
+#ifdef SKY_PARAMS_IN_STORAGE_BUFFERS
+#define PARAMS_BLOCK readonly buffer
+#else
+#define PARAMS_BLOCK uniform
+#endif
+
 #endif

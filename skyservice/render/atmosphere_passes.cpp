@@ -48,7 +48,8 @@ SkyStatus createAtmosphereResources(Renderer& r)
     d.height = SKY_VIEW_LUT_HEIGHT;
     SKY_TRY(createImage(r.ctx, r.memory, r.skyViewLut, d, "sky-view LUT"));
     SKY_TRY(createBuffer(r.ctx, r.memory, r.atmosphereUniforms, sizeof(AtmosphereParams),
-                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostVisible, "atmosphere uniforms"));
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::HostVisible,
+                         "atmosphere uniforms"));
     OneShot shot;
     SKY_TRY(beginOneShot(r.ctx, shot));
     for (Image* img : {&r.transmittanceLut, &r.multiscatterLut, &r.skyViewLut})

@@ -351,12 +351,13 @@ SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
     d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
     SKY_TRY(createImage(r.ctx, r.memory, r.weatherWindowImage, d, "weather window"));
 
-    // Storage, not uniform, buffers for the per-frame parameters (also the atmosphere's): with uniform
-    // buffers bound through push descriptors, lavapipe (Mesa 22.3.6-1+deb12u2) grew the service's resident memory
-    // by ~0.5 MB per frame (measured with tests/service ServiceSoak, SKY_SOAK_VERBOSE=1: 232 MB to
-    // 930 MB over 1500 frames); with storage buffers it is flat to the kB. The shaders read them as
-    // std140 readonly buffers, so the layout is the same.
-    SKY_TRY(createBuffer(r.ctx, r.memory, r.frameUniforms, sizeof(FrameParams), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+    // Usable as uniform and as storage buffer: the shaders read the parameters from uniform buffers, or
+    // from storage buffers on lavapipe (shaders/shared/bindings.h PARAMS_BLOCK): with uniform buffers
+    // bound through push descriptors, lavapipe (Mesa 22.3.6) grew the service's resident memory by
+    // ~0.5 MB per frame (tests/service ServiceSoak, SKY_SOAK_VERBOSE=1: 232 MB to 930 MB over 1500
+    // frames); with storage buffers it is flat to the kB. Both variants use std140: the same layout.
+    SKY_TRY(createBuffer(r.ctx, r.memory, r.frameUniforms, sizeof(FrameParams),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                          MemoryUse::HostVisible, "frame uniforms"));
     SKY_TRY(createAtmosphereResources(r));
     SKY_TRY(generateNoise(r, options.noiseSeed));

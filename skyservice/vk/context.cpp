@@ -213,6 +213,9 @@ SkyStatus createContext(Context& ctx, const ContextOptions& options)
     props2.pNext = &driverProps;
     vkGetPhysicalDeviceProperties2(ctx.physicalDevice, &props2);
     ctx.driverInfo = std::string(driverProps.driverName) + " " + driverProps.driverInfo;
+    ctx.paramsInStorageBuffers = options.paramBlocks == ContextOptions::ParamBlocks::Auto
+                                     ? driverProps.driverID == VK_DRIVER_ID_MESA_LLVMPIPE
+                                     : options.paramBlocks == ContextOptions::ParamBlocks::Storage;
     std::memcpy(ctx.deviceUUID, idProps.deviceUUID, VK_UUID_SIZE);
     std::memcpy(ctx.driverUUID, idProps.driverUUID, VK_UUID_SIZE);
 

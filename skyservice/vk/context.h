@@ -17,6 +17,9 @@ struct ContextOptions
     bool validation = false;        ///< enable VK_LAYER_KHRONOS_validation and count its messages
     std::string deviceSelector;     ///< "" = best (discrete > integrated > virtual > CPU), a number, or a name substring
     bool quiet = false;             ///< do not print the chosen device
+    /// How shaders read their parameter blocks (Context::paramsInStorageBuffers): Auto = storage buffers
+    /// on lavapipe only; the others force one variant (tests check that both draw the same).
+    enum class ParamBlocks { Auto, Uniform, Storage } paramBlocks = ParamBlocks::Auto;
 };
 
 /// Everything device-wide. Owned by the Service / renderer; destroyed with destroyContext().
@@ -44,6 +47,10 @@ struct Context
     uint8_t driverUUID[VK_UUID_SIZE] = {};
     PFN_vkGetMemoryFdKHR getMemoryFd = nullptr;        ///< when externalMemoryFd
     PFN_vkGetSemaphoreFdKHR getSemaphoreFd = nullptr;  ///< when externalSemaphoreFd
+
+    /// Shaders read their parameter blocks from storage buffers (the `.storage.spv` variants) instead of
+    /// uniform buffers: on lavapipe, whose uniform buffers through push descriptors leak (bindings.h).
+    bool paramsInStorageBuffers = false;
 
     /// Validation messages of severity warning or error seen so far (tests fail on any).
     std::atomic<uint32_t> validationMessages{0};

@@ -262,7 +262,7 @@ std::string spirvDirectory()
 SkyStatus createProgram(const Context& ctx, Program& out, const char* name)
 {
     out = Program{};
-    std::string path = spirvDirectory() + "/" + name + ".spv";
+    std::string path = spirvDirectory() + "/" + name + (ctx.paramsInStorageBuffers ? ".storage.spv" : ".spv");
     std::ifstream file(path, std::ios::binary | std::ios::ate);
     if (!file)
         return SkyStatus::failure("cannot open shader " + path + " (set SKY_SPIRV_DIR?)", VK_ERROR_INITIALIZATION_FAILED);

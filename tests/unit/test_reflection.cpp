@@ -28,12 +28,34 @@ TEST(Reflection, CloudMarchInterface)
     std::string error;
     ASSERT_TRUE(sky::reflectSpirv(loadSpirv("cloud_march"), iface, error)) << error;
     ASSERT_EQ(iface.bindings.size(), 10u);
-    // Frame parameters are a std140 storage buffer (renderer.cpp says why: a lavapipe leak with uniform buffers).
-    EXPECT_EQ(iface.bindings[0], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    EXPECT_EQ(iface.bindings[0], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
     EXPECT_EQ(iface.bindings[2], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     EXPECT_EQ(iface.bindings[8], VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
     EXPECT_EQ(iface.localSize[0], uint32_t(WORKGROUP_SIZE_2D));
     EXPECT_EQ(iface.pushConstantSize, 0u);
+}
+
+// The variant for lavapipe reads the same parameter blocks as storage buffers (bindings.h PARAMS_BLOCK).
+TEST(Reflection, StorageVariantReadsParametersFromStorageBuffers)
+{
+    for (const char* name : {"cloud_march", "composite", "reconstruct", "shadow_map", "sky_view_lut"})
+    {
+        sky::ShaderInterface plain, storage;
+        std::string error;
+        ASSERT_TRUE(sky::reflectSpirv(loadSpirv(name), plain, error)) << error;
+        ASSERT_TRUE(sky::reflectSpirv(loadSpirv(std::string(name) + ".storage"), storage, error)) << error;
+        ASSERT_EQ(plain.bindings.size(), storage.bindings.size()) << name;
+        int uniforms = 0;
+        for (size_t i = 0; i < plain.bindings.size(); ++i)
+            if (plain.bindings[i] == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
+            {
+                ++uniforms;
+                EXPECT_EQ(storage.bindings[i], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) << name << " binding " << i;
+            }
+            else
+                EXPECT_EQ(storage.bindings[i], plain.bindings[i]) << name << " binding " << i;
+        EXPECT_GE(uniforms, 1) << name;
+    }
 }
 
 TEST(Reflection, PushConstantSizesMatchSharedStructs)
