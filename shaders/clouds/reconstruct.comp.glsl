@@ -11,7 +11,8 @@
 // screen, when the previous depth there disagrees with the expected one (disocclusion), or when it
 // lies outside the range of the fresh 3x3 neighbourhood (colour clamp); a rejected pixel takes its
 // nearest fresh pixel's value, a pixel without any history (off the previous screen, or no history)
-// the fresh pixels interpolated. The result goes to the images the composite reads and to the history.
+// the fresh pixels interpolated. The result is this frame's cloud image: the composite reads it, and the
+// next frame reprojects it.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -24,10 +25,9 @@ layout(binding = 1, rgba16f) uniform readonly image2D freshCloud;   // block res
 layout(binding = 2, r32f) uniform readonly image2D freshDepth;      // block resolution
 layout(binding = 3, rgba16f) uniform readonly image2D historyCloud; // previous frame, full resolution
 layout(binding = 4, r32f) uniform readonly image2D historyDepth;
-layout(binding = 5, rgba16f) uniform writeonly image2D cloudOut;
-layout(binding = 6, r32f) uniform writeonly image2D depthOut;
-layout(binding = 7, rgba16f) uniform writeonly image2D historyCloudOut;
-layout(binding = 8, r32f) uniform writeonly image2D historyDepthOut;
+// This frame's cloud image: the composite reads it, and the next frame reprojects it.
+layout(binding = 5, rgba16f) uniform writeonly image2D historyCloudOut;
+layout(binding = 6, r32f) uniform writeonly image2D historyDepthOut;
 
 #include "shaders/clouds/view_ray.glsl"
 
@@ -83,8 +83,6 @@ vec4 freshBilinear(ivec2 pixel, ivec2 phase, int B)
 
 void writeAll(ivec2 pixel, vec4 cloud, float depth)
 {
-    imageStore(cloudOut, pixel, cloud);
-    imageStore(depthOut, pixel, vec4(depth, 0.0f, 0.0f, 0.0f));
     imageStore(historyCloudOut, pixel, cloud);
     imageStore(historyDepthOut, pixel, vec4(depth, 0.0f, 0.0f, 0.0f));
 }

@@ -163,12 +163,13 @@ void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camer
               DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.multiscatterLut, r.linearClamp)});
 }
 
-void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request)
+void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request, const Image& cloud,
+                     const Image& depth)
 {
     dispatch(r.ctx, cmd, r.compositeProgram, request.width, request.height, 1, nullptr, 0,
              {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.atmosphereUniforms),
               DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.multiscatterLut, r.linearClamp),
-              DescriptorInfo(r.skyViewLut, r.linearRepeat), DescriptorInfo(r.cloudImage), DescriptorInfo(r.depthImage),
+              DescriptorInfo(r.skyViewLut, r.linearRepeat), DescriptorInfo(cloud), DescriptorInfo(depth),
               DescriptorInfo(r.linearImage), DescriptorInfo(r.displayImage)});
 }
 

@@ -31,6 +31,7 @@ void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camer
                       const FrameInputs& in);
 
 /// Records the composite pass (sky + clouds + aerial perspective -> linear and display images).
-void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request);
+void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request, const Image& cloud,
+                     const Image& depth);
 
 }  // namespace sky

@@ -75,27 +75,55 @@ SkyStatus generateNoise(Renderer& r, uint32_t seed)
     return uploadImage(r.ctx, r.memory, r.blueNoise, blue.data(), blue.size(), VK_IMAGE_LAYOUT_GENERAL);
 }
 
-SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height)
+bool hasSize(const Image& img, uint32_t width, uint32_t height)
 {
-    if (r.cloudImage.image && r.cloudImage.extent.width == width && r.cloudImage.extent.height == height)
+    return img.image && img.extent.width == width && img.extent.height == height;
+}
+
+// The full-resolution images of a frame: linear and display always; the cloud radiance and depth only
+// for full-resolution frames (`cloudImages`): a reprojected frame's cloud image is the history image
+// its reconstruct pass writes, which the composite and the readback take directly (25 MiB less at
+// 1080p). A renderer that has made full frames keeps their cloud images.
+SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height, bool cloudImages)
+{
+    const bool frameOk = hasSize(r.displayImage, width, height);
+    const bool cloudOk = !cloudImages || hasSize(r.cloudImage, width, height);
+    if (frameOk && cloudOk)
         return SkyStatus::success();
-    VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize only: never in steady state
-    for (Image* img : {&r.cloudImage, &r.depthImage, &r.linearImage, &r.displayImage})
-        destroyImage(r.ctx, r.memory, *img);
+    VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize or first full frame only: never in steady state
+    std::vector<Image*> made;
     ImageDesc d;
     d.width = width;
     d.height = height;
-    d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-    SKY_TRY(createImage(r.ctx, r.memory, r.cloudImage, d, "cloud radiance"));
-    SKY_TRY(createImage(r.ctx, r.memory, r.linearImage, d, "linear frame"));
-    d.format = VK_FORMAT_R32_SFLOAT;
-    SKY_TRY(createImage(r.ctx, r.memory, r.depthImage, d, "cloud depth"));
-    d.format = VK_FORMAT_R8G8B8A8_UNORM;
-    d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-    SKY_TRY(createImage(r.ctx, r.memory, r.displayImage, d, "display frame"));
+    if (!frameOk)
+    {
+        destroyImage(r.ctx, r.memory, r.linearImage);
+        destroyImage(r.ctx, r.memory, r.displayImage);
+        d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+        SKY_TRY(createImage(r.ctx, r.memory, r.linearImage, d, "linear frame"));
+        d.format = VK_FORMAT_R8G8B8A8_UNORM;
+        d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+        SKY_TRY(createImage(r.ctx, r.memory, r.displayImage, d, "display frame"));
+        d.usage = ImageDesc{}.usage;
+        made = {&r.linearImage, &r.displayImage};
+    }
+    if (!frameOk || !cloudOk)  // a resize drops cloud images of the old size
+    {
+        destroyImage(r.ctx, r.memory, r.cloudImage);
+        destroyImage(r.ctx, r.memory, r.depthImage);
+        if (cloudImages)
+        {
+            d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+            SKY_TRY(createImage(r.ctx, r.memory, r.cloudImage, d, "cloud radiance"));
+            d.format = VK_FORMAT_R32_SFLOAT;
+            SKY_TRY(createImage(r.ctx, r.memory, r.depthImage, d, "cloud depth"));
+            made.push_back(&r.cloudImage);
+            made.push_back(&r.depthImage);
+        }
+    }
     OneShot shot;
     SKY_TRY(beginOneShot(r.ctx, shot));
-    for (Image* img : {&r.cloudImage, &r.depthImage, &r.linearImage, &r.displayImage})
+    for (Image* img : made)
         transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     return endOneShot(r.ctx, shot);
 }
@@ -255,18 +283,22 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
               DescriptorInfo(marchCloud), DescriptorInfo(marchDepth)});
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsClouds);
+    // The frame's cloud image: the march's output at full resolution, or the history image the
+    // reconstruct pass writes this frame (which the next frame reprojects).
+    const uint32_t next = r.reprojection.current ^ 1u;
+    const Image& frameCloud = reprojected ? r.historyCloud[next] : r.cloudImage;
+    const Image& frameDepth = reprojected ? r.historyDepth[next] : r.depthImage;
     if (reprojected)
     {
-        uint32_t prev = r.reprojection.current, next = prev ^ 1u;
+        const uint32_t prev = r.reprojection.current;
         dispatch(r.ctx, cmd, r.reconstructProgram, request.width, request.height, 1, nullptr, 0,
                  {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.freshCloudImage), DescriptorInfo(r.freshDepthImage),
                   DescriptorInfo(r.historyCloud[prev]), DescriptorInfo(r.historyDepth[prev]),
-                  DescriptorInfo(r.cloudImage), DescriptorInfo(r.depthImage), DescriptorInfo(r.historyCloud[next]),
-                  DescriptorInfo(r.historyDepth[next])});
+                  DescriptorInfo(frameCloud), DescriptorInfo(frameDepth)});
         computeBarrier(cmd);
     }
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsReconstruct);
-    recordComposite(r, cmd, request);
+    recordComposite(r, cmd, request, frameCloud, frameDepth);
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsComposite);
     SKY_TRY(endOneShot(r.ctx, shot));
@@ -291,10 +323,10 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
     if (!in.quality->readback)
         return SkyStatus::success();  // timing runs: the GPU work is done, nothing to copy
     std::vector<uint8_t> bytes;
-    SKY_TRY(readbackImage(r.ctx, r.memory, r.cloudImage, bytes));
+    SKY_TRY(readbackImage(r.ctx, r.memory, frameCloud, bytes));
     result.cloudRgbaHalf.resize(bytes.size() / 2);
     std::memcpy(result.cloudRgbaHalf.data(), bytes.data(), bytes.size());
-    SKY_TRY(readbackImage(r.ctx, r.memory, r.depthImage, bytes));
+    SKY_TRY(readbackImage(r.ctx, r.memory, frameDepth, bytes));
     result.cloudDepthM.resize(bytes.size() / 4);
     std::memcpy(result.cloudDepthM.data(), bytes.data(), bytes.size());
     SKY_TRY(readbackImage(r.ctx, r.memory, r.linearImage, bytes));
@@ -420,7 +452,7 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     const WeatherWindow& window = r.window->window;
     const EyeOnWindow eyeOnWindow =
         placeEyeOnWindow(window.centreLatDeg, window.centreLonDeg, camera.eye.latDeg, camera.eye.lonDeg);
-    SKY_TRY(ensureOutputImages(r, request.width, request.height));
+    SKY_TRY(ensureOutputImages(r, request.width, request.height, !quality.reprojected));
     if (quality.reprojected)
     {
         r.reprojection.block = chooseMarchBlock(window, camera.eye.altitudeM, eyeOnWindow.offsetM);
