@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* libskyclient, files transport: connect, set a view, ask the service to write every frame into a folder,
- * ask for one frame and wait for its PNG to appear (the service writes it atomically: once the name
- * exists, the file is complete).
+ * ask for one frame and wait for its JSON sidecar (each file is written atomically, the sidecar last:
+ * once it exists, the frame's PNG is complete too).
  *   example-files --socket /run/user/1000/skyservice.sock --dir /tmp/sky-frames */
 #include "skyservice/client/skyclient.h"
 
@@ -56,19 +56,26 @@ int main(int argc, char** argv)
     if ((r = sky_client_request_frame(client, &frame)) != SKY_OK)
         return failed(client, "request_frame", r);
 
-    char path[4096];
+    char sidecar[4096], path[4096];
+    snprintf(sidecar, sizeof sidecar, "%s/frame-%08llu.json", dir, (unsigned long long)frame);
     snprintf(path, sizeof path, "%s/frame-%08llu.png", dir, (unsigned long long)frame);
     struct stat st;
-    for (int waited_ms = 0; stat(path, &st) != 0; waited_ms += 50)
+    for (int waited_ms = 0; stat(sidecar, &st) != 0; waited_ms += 50)
     {
         if (waited_ms > 120000)
         {
-            fprintf(stderr, "example-files: %s did not appear within 120 s\n", path);
+            fprintf(stderr, "example-files: %s did not appear within 120 s\n", sidecar);
             sky_client_close(client);
             return 1;
         }
         struct timespec pause = {0, 50 * 1000 * 1000};
         nanosleep(&pause, NULL);
+    }
+    if (stat(path, &st) != 0)
+    {
+        fprintf(stderr, "example-files: %s is there but %s is not\n", sidecar, path);
+        sky_client_close(client);
+        return 1;
     }
     printf("frame %llu: %s, %lld bytes\n", (unsigned long long)frame, path, (long long)st.st_size);
     sky_client_close(client);

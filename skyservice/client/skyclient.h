@@ -97,7 +97,7 @@ SkyResult sky_client_status(SkyClient* client, char* buffer, size_t buffer_bytes
 
 /* Files transport: the service writes every `every`-th frame (>= 1) into `dir` (a folder on the service's
  * machine) as DIR/frame-NNNNNNNN.png and/or .exr ("png", "exr" or "both") plus a .json sidecar, each
- * written atomically (temporary file + rename): a file that exists is complete. */
+ * written atomically (temporary file + rename), the .json last: once it exists, the frame's images do too. */
 SkyResult sky_client_subscribe_files(SkyClient* client, const char* dir, uint32_t every, const char* format);
 
 /* Shared-memory transport: maps the ring. Call once; after a service restart, reconnect. */
