@@ -5,16 +5,17 @@ set(SKY_BENCH_BIN $<TARGET_FILE:sky-bench>)
 set(SKY_BENCH_TMP ${CMAKE_CURRENT_BINARY_DIR}/bench_tmp)
 file(MAKE_DIRECTORY ${SKY_BENCH_TMP})
 
-# Reprojected mode on a tiny clear sky with validation on: three frames through the temporal loop print
-# a row with six median/p95 cells (sky, march, reconstruct, composite, total, wall) where full mode has five.
+# Reprojected mode on a tiny clear sky with validation on, the eye flying at 250 m/s (--speed: a new
+# eye position every frame): three frames through the temporal loop print a row with six median/p95 cells
+# (sky, march, reconstruct, composite, total, wall) where full mode has five.
 add_test(NAME bench.reprojected_small_validated COMMAND ${SKY_BENCH_EXPECT} 0
          "^clear( +[0-9.]+/[0-9.]+){6} +[0-9.]+ +0\\.0$"
          ${SKY_BENCH_BIN} --scene clear --width 32 --height 18 --frames 2 --warmup 1 --mode reprojected --validate
-         --json ${SKY_BENCH_TMP}/reprojected.json)
+         --speed 250 --json ${SKY_BENCH_TMP}/reprojected.json)
 set_tests_properties(bench.reprojected_small_validated PROPERTIES TIMEOUT 120)
 add_test(NAME bench.reprojected_json COMMAND ${CMAKE_COMMAND} -E cat ${SKY_BENCH_TMP}/reprojected.json)
 set_tests_properties(bench.reprojected_json PROPERTIES DEPENDS bench.reprojected_small_validated
-                     PASS_REGULAR_EXPRESSION "\"mode\": \"reprojected\".*\"march\".*\"reconstruct\"")
+                     PASS_REGULAR_EXPRESSION "\"eyeSpeedMps\": 250(\\.0)?,.*\"mode\": \"reprojected\".*\"march\".*\"reconstruct\"")
 # An unknown scene is a usage error that lists the known ones.
 add_test(NAME bench.unknown_scene COMMAND ${SKY_BENCH_EXPECT} 2 "unknown scene \"fog\".*above-deck-FL350"
          ${SKY_BENCH_BIN} --scene fog)

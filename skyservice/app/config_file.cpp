@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/app/config_file.h"
 
+#include "skyservice/app/toml_file.h"
 #include "skyservice/render/frame_setup.h"
 
 #include <functional>
 #include <map>
-#include <toml++/toml.h>
 
 namespace sky
 {
@@ -66,17 +66,8 @@ std::map<std::string, Key> keys()
 bool applyConfigFile(const std::string& path, QualitySettings& quality, std::string& error)
 {
     toml::table table;
-    try
-    {
-        table = toml::parse_file(path);
-    }
-    catch (const toml::parse_error& e)
-    {
-        const auto& where = e.source().begin;
-        error = path + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) + ": " +
-                std::string(e.description());
+    if (!parseTomlFile(path, table, error))
         return false;
-    }
     QualitySettings q = quality;
     const std::map<std::string, Key> known = keys();
     std::string bad;

@@ -50,7 +50,6 @@ void prefetchWindow(WindowPrefetch& prefetch, const std::shared_ptr<const Weathe
         prefetch.job.get();  // a finished guess that was not needed
     }
     prefetch.key = key;
-    ++prefetch.started;
     std::shared_ptr<const WeatherSnapshot> keep = weather;
     prefetch.job = std::async(std::launch::async, [keep, key] { return prepareWindow(*keep, key); });
 }

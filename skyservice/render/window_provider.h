@@ -57,7 +57,6 @@ struct WindowPrefetch
 {
     std::future<std::shared_ptr<const PreparedWindow>> job;  ///< valid while a job was started and not taken
     WindowKey key;                                            ///< what `job` makes
-    uint64_t started = 0;      ///< background preparations started
     uint64_t used = 0;         ///< ... whose result a frame used
     uint64_t madeOnFrame = 0;  ///< windows prepared on the frame path (first frame, new weather, a jump)
 };

@@ -2,9 +2,8 @@
 #include "skyservice/service/service_config.h"
 
 #include "skyservice/app/commands.h"
+#include "skyservice/app/toml_file.h"
 #include "skyservice/sky/ephemeris.h"
-
-#include <toml++/toml.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -240,17 +239,8 @@ ServiceConfig defaultServiceConfig()
 bool loadServiceConfig(const std::string& path, ServiceConfig& out, std::string& error)
 {
     toml::table table;
-    try
-    {
-        table = toml::parse_file(path);
-    }
-    catch (const toml::parse_error& e)
-    {
-        const auto& where = e.source().begin;
-        error = path + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) + ": " +
-                std::string(e.description());
+    if (!parseTomlFile(path, table, error))
         return false;
-    }
     ServiceConfig c = out;
     c.path = path;
     if (const toml::node* node = table.get("service"))

@@ -33,6 +33,17 @@ struct DaemonConfig
     std::string extraSections; ///< more sections ([march] ...)
 };
 
+/// The config most tests use: 16x9 frames (enough for the plumbing, fast on lavapipe) rendered at
+/// `renderRateHz` (0: only on request).
+inline DaemonConfig tinyFrames(double renderRateHz = 0)
+{
+    DaemonConfig c;
+    c.width = 16;
+    c.height = 9;
+    c.renderRateHz = renderRateHz;
+    return c;
+}
+
 class Daemon
 {
 public:

@@ -35,10 +35,7 @@ TEST(ServiceControl, LoadWeatherBadThenGood)
     TempDir tmp;
     Daemon d;
     std::string error;
-    DaemonConfig cfg;
-    cfg.width = 16;
-    cfg.height = 9;
-    cfg.renderRateHz = 20;
+    DaemonConfig cfg = tinyFrames(20);
     ASSERT_TRUE(d.start(tmp.path, cfg, error)) << error;
     RawClient c;
     ASSERT_TRUE(c.open(d.socketPath));
@@ -74,9 +71,7 @@ TEST(ServiceControl, WeatherDirIsWatched)
     std::filesystem::create_directory(wx);
     Daemon d;
     std::string error;
-    DaemonConfig cfg;
-    cfg.width = 16;
-    cfg.height = 9;
+    DaemonConfig cfg = tinyFrames();
     cfg.weatherDir = wx;
     ASSERT_TRUE(d.start(tmp.path, cfg, error)) << error;
     RawClient c;
@@ -101,9 +96,7 @@ TEST(ServiceControl, SighupReloads)
     TempDir tmp;
     Daemon d;
     std::string error;
-    DaemonConfig cfg;
-    cfg.width = 16;
-    cfg.height = 9;
+    DaemonConfig cfg = tinyFrames();
     ASSERT_TRUE(d.start(tmp.path, cfg, error)) << error;
     std::string original = readFile(d.configPath);
     std::ofstream(d.configPath) << original << "\n[march]\nmax_view_step = 3\n";
@@ -131,10 +124,7 @@ TEST(ServiceControl, SigtermCleansUp)
     TempDir tmp;
     Daemon d;
     std::string error;
-    DaemonConfig cfg;
-    cfg.width = 16;
-    cfg.height = 9;
-    cfg.renderRateHz = 20;
+    DaemonConfig cfg = tinyFrames(20);
     ASSERT_TRUE(d.start(tmp.path, cfg, error)) << error;
     RawClient c;
     ASSERT_TRUE(c.open(d.socketPath));

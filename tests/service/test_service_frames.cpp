@@ -106,10 +106,7 @@ TEST(ServiceFrames, ClientKilledMidRead)
     TempDir tmp;
     Daemon d;
     std::string error;
-    DaemonConfig cfg;
-    cfg.width = 16;
-    cfg.height = 9;
-    cfg.renderRateHz = 50;
+    DaemonConfig cfg = tinyFrames(50);
     ASSERT_TRUE(d.start(tmp.path, cfg, error)) << error;
 
     int ready[2];
@@ -152,10 +149,7 @@ TEST(ServiceFrames, EightClients)
     TempDir tmp;
     Daemon d;
     std::string error;
-    DaemonConfig cfg;
-    cfg.width = 16;
-    cfg.height = 9;
-    cfg.renderRateHz = 50;
+    DaemonConfig cfg = tinyFrames(50);
     ASSERT_TRUE(d.start(tmp.path, cfg, error)) << error;
     std::atomic<int> ok{0};
     std::vector<std::thread> threads;
@@ -193,10 +187,7 @@ TEST(ServiceFrames, ClientReconnectsAfterRestart)
     TempDir tmp;
     Daemon d;
     std::string error;
-    DaemonConfig cfg;
-    cfg.width = 16;
-    cfg.height = 9;
-    cfg.renderRateHz = 20;
+    DaemonConfig cfg = tinyFrames(20);
     ASSERT_TRUE(d.start(tmp.path, cfg, error)) << error;
     SkyClient* c = nullptr;
     ASSERT_EQ(sky_client_connect(d.socketPath.c_str(), "restart", &c), SKY_OK);
@@ -223,10 +214,7 @@ TEST(ServiceFrames, VulkanSubscribeSendsFds)
     TempDir tmp;
     Daemon d;
     std::string error;
-    DaemonConfig cfg;
-    cfg.width = 16;
-    cfg.height = 9;
-    cfg.renderRateHz = 20;
+    DaemonConfig cfg = tinyFrames(20);
     cfg.extraService = "shadow_map_size = 16\nshadow_map_extent_m = 20000\n";
     ASSERT_TRUE(d.start(tmp.path, cfg, error)) << error;
     RawClient c;

@@ -125,10 +125,7 @@ TEST(ServiceProtocol, NeverReadingClientIsDisconnected)
     TempDir tmp;
     Daemon d;
     std::string error;
-    DaemonConfig cfg;
-    cfg.width = 16;
-    cfg.height = 9;
-    cfg.renderRateHz = 20;
+    DaemonConfig cfg = tinyFrames(20);
     ASSERT_TRUE(d.start(tmp.path, cfg, error)) << error;
     RawClient deaf, other;
     ASSERT_TRUE(deaf.open(d.socketPath));
