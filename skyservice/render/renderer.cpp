@@ -5,8 +5,11 @@
 #include "shaders/shared/noise_params.h"
 #include "shaders/shared/weather_window.h"
 #include "skyservice/render/atmosphere_passes.h"
+#include "skyservice/render/frame_images.h"
+#include "skyservice/render/frame_recording.h"
 #include "skyservice/render/frame_setup.h"
 #include "skyservice/render/shadow_map.h"
+#include "skyservice/render/window_upload.h"
 #include "skyservice/sky/blue_noise.h"
 
 #include <algorithm>
@@ -19,17 +22,6 @@ namespace sky
 {
 namespace
 {
-
-// Timestamp slots: one before the frame and one after each pass.
-enum TimestampSlot : uint32_t
-{
-    kTsStart,
-    kTsSkyView,
-    kTsClouds,  ///< after the march (full or 1/16)
-    kTsReconstruct,  ///< after the reconstruct pass (written right after kTsClouds in full mode)
-    kTsComposite,
-    kTsCount
-};
 
 SkyStatus createSampler(const Context& ctx, VkFilter filter, VkSamplerAddressMode mode, VkSampler& out)
 {
@@ -75,114 +67,6 @@ SkyStatus generateNoise(Renderer& r, uint32_t seed)
     return uploadImage(r.ctx, r.memory, r.blueNoise, blue.data(), blue.size(), VK_IMAGE_LAYOUT_GENERAL);
 }
 
-bool hasSize(const Image& img, uint32_t width, uint32_t height)
-{
-    return img.image && img.extent.width == width && img.extent.height == height;
-}
-
-// The full-resolution images of a frame: linear and display always; the cloud radiance and depth only
-// for full-resolution frames (`cloudImages`): a reprojected frame's cloud image is the history image
-// its reconstruct pass writes, which the composite and the readback take directly (25 MiB less at
-// 1080p). A renderer that has made full frames keeps their cloud images.
-SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height, bool cloudImages)
-{
-    const bool frameOk = hasSize(r.displayImage, width, height);
-    const bool cloudOk = !cloudImages || hasSize(r.cloudImage, width, height);
-    if (frameOk && cloudOk)
-        return SkyStatus::success();
-    VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize or first full frame only: never in steady state
-    std::vector<Image*> made;
-    ImageDesc d;
-    d.width = width;
-    d.height = height;
-    if (!frameOk)
-    {
-        destroyImage(r.ctx, r.memory, r.linearImage);
-        destroyImage(r.ctx, r.memory, r.displayImage);
-        d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-        SKY_TRY(createImage(r.ctx, r.memory, r.linearImage, d, "linear frame"));
-        d.format = VK_FORMAT_R8G8B8A8_UNORM;
-        d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-        SKY_TRY(createImage(r.ctx, r.memory, r.displayImage, d, "display frame"));
-        d.usage = ImageDesc{}.usage;
-        made = {&r.linearImage, &r.displayImage};
-    }
-    if (!frameOk || !cloudOk)  // a resize drops cloud images of the old size
-    {
-        destroyImage(r.ctx, r.memory, r.cloudImage);
-        destroyImage(r.ctx, r.memory, r.depthImage);
-        if (cloudImages)
-        {
-            d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-            SKY_TRY(createImage(r.ctx, r.memory, r.cloudImage, d, "cloud radiance"));
-            d.format = VK_FORMAT_R32_SFLOAT;
-            SKY_TRY(createImage(r.ctx, r.memory, r.depthImage, d, "cloud depth"));
-            made.push_back(&r.cloudImage);
-            made.push_back(&r.depthImage);
-        }
-    }
-    OneShot shot;
-    SKY_TRY(beginOneShot(r.ctx, shot));
-    for (Image* img : made)
-        transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-    return endOneShot(r.ctx, shot);
-}
-
-// The reprojection images: block-resolution fresh pixels and the two full-resolution histories. The
-// fresh images only grow (to the finest block used so far) and are replaced without touching history,
-// so that flying into a cloud (block 4 -> 2 -> 1) keeps the history.
-SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height, uint32_t blockPx)
-{
-    OneShot shot;
-    bool fresh = false;
-    if (!(r.historyCloud[0].image && r.historyCloud[0].extent.width == width &&
-          r.historyCloud[0].extent.height == height))
-    {
-        VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize only: never in steady state
-        for (Image* img : {&r.freshCloudImage, &r.freshDepthImage, &r.historyCloud[0], &r.historyCloud[1],
-                           &r.historyDepth[0], &r.historyDepth[1]})
-            destroyImage(r.ctx, r.memory, *img);
-        r.reprojection.valid = false;
-        ImageDesc d;
-        d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-        d.width = width;
-        d.height = height;
-        for (int k = 0; k < 2; ++k)
-        {
-            d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-            SKY_TRY(createImage(r.ctx, r.memory, r.historyCloud[k], d, "cloud radiance history"));
-            d.format = VK_FORMAT_R32_SFLOAT;
-            SKY_TRY(createImage(r.ctx, r.memory, r.historyDepth[k], d, "cloud depth history"));
-        }
-        SKY_TRY(beginOneShot(r.ctx, shot));
-        for (Image* img : {&r.historyCloud[0], &r.historyCloud[1], &r.historyDepth[0], &r.historyDepth[1]})
-            transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-        fresh = true;
-    }
-    uint32_t blocksX = (width + blockPx - 1) / blockPx, blocksY = (height + blockPx - 1) / blockPx;
-    if (!(r.freshCloudImage.image && r.freshCloudImage.extent.width >= blocksX &&
-          r.freshCloudImage.extent.height >= blocksY))
-    {
-        VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // first frame at a finer block only
-        destroyImage(r.ctx, r.memory, r.freshCloudImage);
-        destroyImage(r.ctx, r.memory, r.freshDepthImage);
-        ImageDesc d;
-        d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-        d.width = blocksX;
-        d.height = blocksY;
-        d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-        SKY_TRY(createImage(r.ctx, r.memory, r.freshCloudImage, d, "fresh cloud radiance (one pixel per block)"));
-        d.format = VK_FORMAT_R32_SFLOAT;
-        SKY_TRY(createImage(r.ctx, r.memory, r.freshDepthImage, d, "fresh cloud depth (one pixel per block)"));
-        if (!fresh)
-            SKY_TRY(beginOneShot(r.ctx, shot));
-        for (Image* img : {&r.freshCloudImage, &r.freshDepthImage})
-            transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-        fresh = true;
-    }
-    return fresh ? endOneShot(r.ctx, shot) : SkyStatus::success();
-}
-
 SkyStatus checkRequest(const ViewRequest& req)
 {
     std::string error;
@@ -222,117 +106,6 @@ std::vector<uint16_t> average(const std::vector<double>& sum, uint32_t frames)
     for (size_t i = 0; i < sum.size(); ++i)
         out[i] = glm::packHalf1x16(float(sum[i] / frames));
     return out;
-}
-
-// Puts the window of the eye's lattice node on the GPU (made on a worker thread ahead of time when the
-// eye flew toward it, else now), and starts the window of the node the eye is heading for.
-SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const QualitySettings& quality)
-{
-    WindowKey key{r.weatherVersion, windowCentreForEye(camera.eye.latDeg, camera.eye.lonDeg),
-                  quality.windowHalfExtentM, quality.windowWarpRadiusM};
-    if (!r.window || !(r.window->key == key) || !r.windowOnGpu)
-    {
-        r.windowOnGpu = false;  // stays false if the upload fails
-        r.window = takeWindow(r.windowPrefetch, r.weather, key);
-        const std::vector<uint16_t>& texels = r.window->gpuTexelsHalf;
-        SKY_TRY(uploadImage(r.ctx, r.memory, r.weatherWindowImage, texels.data(), texels.size() * sizeof(uint16_t),
-                            VK_IMAGE_LAYOUT_GENERAL));
-        r.windowOnGpu = true;
-    }
-    // The next node: the one under the point kWindowLookAheadM ahead along the eye's horizontal motion.
-    glm::dvec3 moveEnu = glm::transpose(camera.enuToEcef) * (camera.eyeEcefM - r.lastEyeEcefM);
-    r.lastEyeEcefM = camera.eyeEcefM;
-    double moveM = glm::length(glm::dvec2(moveEnu));
-    if (moveM > 1e-3 && moveM < kReprojectionMaxMoveM)
-    {
-        glm::dvec2 ahead = glm::dvec2(moveEnu) / moveM * kWindowLookAheadM;
-        double latDeg = 0, lonDeg = 0, hM = 0;
-        enuToGeodetic(camera, glm::dvec3(ahead, 0.0), latDeg, lonDeg, hM);
-        WindowKey next = key;
-        next.centre = windowCentreForEye(latDeg, lonDeg);
-        if (!(next == key))
-            prefetchWindow(r.windowPrefetch, r.weather, next);
-    }
-    return SkyStatus::success();
-}
-
-// One frame on the GPU: sky-view LUT, cloud march, composite, then the readback of every image.
-SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame& camera, const SunMoon& sunMoon,
-                     const FrameInputs& in, RenderResult& result)
-{
-    const bool reprojected = in.quality->reprojected;
-    OneShot shot;
-    SKY_TRY(beginOneShot(r.ctx, shot));
-    VkCommandBuffer cmd = shot.cmd;
-    vkCmdResetQueryPool(cmd, r.timestamps, 0, kTsCount);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r.timestamps, kTsStart);
-    recordAtmosphere(r, cmd, camera, sunMoon, in);
-    computeBarrier(cmd);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsSkyView);
-    // Reprojected: one invocation per block (4x4, or finer near clouds) into the fresh images.
-    const uint32_t block = reprojected ? r.reprojection.block.blockPx : 1u;
-    uint32_t marchX = (request.width + block - 1) / block;
-    uint32_t marchY = (request.height + block - 1) / block;
-    const Image& marchCloud = reprojected ? r.freshCloudImage : r.cloudImage;
-    const Image& marchDepth = reprojected ? r.freshDepthImage : r.depthImage;
-    dispatch(r.ctx, cmd, r.cloudProgram, marchX, marchY, 1, nullptr, 0,
-             {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.atmosphereUniforms),
-              DescriptorInfo(r.weatherWindowImage, r.linearClamp), DescriptorInfo(r.baseNoise, r.linearRepeat),
-              DescriptorInfo(r.detailNoise, r.linearRepeat), DescriptorInfo(r.curlNoise, r.linearRepeat),
-              DescriptorInfo(r.blueNoise, r.nearestRepeat), DescriptorInfo(r.transmittanceLut, r.linearClamp),
-              DescriptorInfo(marchCloud), DescriptorInfo(marchDepth)});
-    computeBarrier(cmd);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsClouds);
-    // The frame's cloud image: the march's output at full resolution, or the history image the
-    // reconstruct pass writes this frame (which the next frame reprojects).
-    const uint32_t next = r.reprojection.current ^ 1u;
-    const Image& frameCloud = reprojected ? r.historyCloud[next] : r.cloudImage;
-    const Image& frameDepth = reprojected ? r.historyDepth[next] : r.depthImage;
-    if (reprojected)
-    {
-        const uint32_t prev = r.reprojection.current;
-        dispatch(r.ctx, cmd, r.reconstructProgram, request.width, request.height, 1, nullptr, 0,
-                 {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.freshCloudImage), DescriptorInfo(r.freshDepthImage),
-                  DescriptorInfo(r.historyCloud[prev]), DescriptorInfo(r.historyDepth[prev]),
-                  DescriptorInfo(frameCloud), DescriptorInfo(frameDepth)});
-        computeBarrier(cmd);
-    }
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsReconstruct);
-    recordComposite(r, cmd, request, frameCloud, frameDepth);
-    computeBarrier(cmd);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsComposite);
-    SKY_TRY(endOneShot(r.ctx, shot));
-
-    uint64_t ts[kTsCount] = {};
-    if (r.ctx.timestampPeriodNs > 0 &&
-        vkGetQueryPoolResults(r.ctx.device, r.timestamps, 0, kTsCount, sizeof ts, ts, sizeof(uint64_t),
-                              VK_QUERY_RESULT_64_BIT) == VK_SUCCESS)
-    {
-        auto ms = [&](uint32_t a, uint32_t b) { return double(ts[b] - ts[a]) * r.ctx.timestampPeriodNs * 1e-6; };
-        result.gpuMs["sky"] = ms(kTsStart, kTsSkyView);
-        if (reprojected)
-        {
-            result.gpuMs["march"] = ms(kTsSkyView, kTsClouds);
-            result.gpuMs["reconstruct"] = ms(kTsClouds, kTsReconstruct);
-        }
-        else
-            result.gpuMs["clouds"] = ms(kTsSkyView, kTsClouds);
-        result.gpuMs["composite"] = ms(kTsReconstruct, kTsComposite);
-        result.gpuMs["total"] = ms(kTsStart, kTsComposite);
-    }
-    if (!in.quality->readback)
-        return SkyStatus::success();  // timing runs: the GPU work is done, nothing to copy
-    std::vector<uint8_t> bytes;
-    SKY_TRY(readbackImage(r.ctx, r.memory, frameCloud, bytes));
-    result.cloudRgbaHalf.resize(bytes.size() / 2);
-    std::memcpy(result.cloudRgbaHalf.data(), bytes.data(), bytes.size());
-    SKY_TRY(readbackImage(r.ctx, r.memory, frameDepth, bytes));
-    result.cloudDepthM.resize(bytes.size() / 4);
-    std::memcpy(result.cloudDepthM.data(), bytes.data(), bytes.size());
-    SKY_TRY(readbackImage(r.ctx, r.memory, r.linearImage, bytes));
-    result.linearRgbaHalf.resize(bytes.size() / 2);
-    std::memcpy(result.linearRgbaHalf.data(), bytes.data(), bytes.size());
-    return readbackImage(r.ctx, r.memory, r.displayImage, result.displayRgba8);
 }
 
 }  // namespace
