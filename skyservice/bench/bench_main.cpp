@@ -54,6 +54,9 @@ struct BenchOptions
     std::string device;
     bool validate = false;
     uint32_t steps = 0;
+    double lightLodM = -1;  ///< < 0: the renderer's default
+    int lightSamples = -1;  ///< < 0: the renderer's default
+    bool noDetail = false;
     uint32_t gpuFrames = 1;
     bool shadowMap = false;
     double speedMps = 0;  ///< the eye flies along its heading at this speed, one frame per 1/60 s
@@ -77,7 +80,7 @@ nlohmann::json qualityJson(const QualitySettings& q)
             {"detail", q.detail},             {"highCloud", q.highCloud},       {"maxDistanceM", q.maxDistanceM},
             {"gpuFramesPerCall", q.accumulationFrames}, {"baseNoisePeriodM", q.baseNoisePeriodM},
             {"detailNoisePeriodM", q.detailNoisePeriodM}, {"extinctionPerM", q.extinctionPerM},
-            {"coneStepM", q.coneStepM}};
+            {"coneStepM", q.coneStepM}, {"lightLodDistanceM", q.lightLodDistanceM}};
 }
 
 // Box-filters an image down by an integer factor (contact sheet tiles only).
@@ -197,6 +200,12 @@ int runBench(const BenchOptions& o)
         quality.accumulationFrames = 1;
     if (o.steps > 0)
         quality.maxViewSteps = o.steps;
+    if (o.lightLodM >= 0)
+        quality.lightLodDistanceM = o.lightLodM;
+    if (o.lightSamples >= 0)
+        quality.lightSamples = uint32_t(o.lightSamples);
+    if (o.noDetail)
+        quality.detail = false;
 
     Renderer r;
     RendererOptions ro;
@@ -289,6 +298,12 @@ int main(int argc, char** argv)
     app.add_flag("--shadow-map", o.shadowMap, "Also render (and read back) the cloud shadow map every call");
     app.add_option("--steps", o.steps, "Maximum view samples per ray (default: the renderer's)")
         ->check(CLI::Range(8, 4096));
+    // Knobs that take parts of the model away, to see what each costs (A/B timings; not for pictures).
+    app.add_option("--light-samples", o.lightSamples, "Cone light samples (default: the renderer's; 0: none)")
+        ->check(CLI::Range(0, 6));
+    app.add_flag("--no-detail", o.noDetail, "Turn the detail erosion off");
+    app.add_option("--light-lod", o.lightLodM, "Light LOD distance (m): beyond it 3 cheap cone samples (0: off)")
+        ->check(CLI::Range(0.0, 1e7));
     try
     {
         app.parse(argc, argv);

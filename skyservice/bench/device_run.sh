@@ -66,7 +66,29 @@ base() {  # W H
   timeout 120 $PROBE --spv $G/baseline/cloud.comp.spv --width $1 --height $2 --frames 100 --out /tmp/base-$1x$2 \
     2>&1 | tee -a "$OUT/baseline.txt" | grep -i "using device\|driver\|FULL\|1/16\|timestamp"
 }
-MODE=${SKY_BENCH_MODE:-full}  # full | reprojected | both (both: reprojected at 1080p and 4K, then full at 1080p)
+MODE=${SKY_BENCH_MODE:-full}  # full | reprojected | both (both: reprojected at 1080p and 4K, then full at 1080p) | ab
+if [ "$MODE" = ab ]; then
+  # A/B of sky-bench options in one call: SKY_BENCH_VARIANTS holds option sets separated by ';' (e.g.
+  # "--march-threads 1;--march-threads 4"); each runs in SKY_BENCH_AB_MODES (default: reprojected full)
+  # at 1920x1080, as bench-ab<i>-<mode>.json; the baseline at 1920x1080 after.
+  i=0
+  IFS=';' read -ra VARIANTS <<< "${SKY_BENCH_VARIANTS:-}"
+  for v in "${VARIANTS[@]}"; do
+    for m in ${SKY_BENCH_AB_MODES:-reprojected full}; do
+      el "sky-bench ab$i $m: $v"
+      if [ "$m" = reprojected ]; then extra="--warmup 20"; else extra="--warmup 10 --gpu-frames 4"; fi
+      # shellcheck disable=SC2086
+      timeout 200 $BENCH --scene all --width 1920 --height 1080 --frames 100 $extra --mode $m --device NVIDIA \
+        --json "$OUT/bench-ab$i-$m.json" $v | grep -v "MiB$"
+      el "rc=$?"
+    done
+    i=$((i + 1))
+  done
+  base 1920 1080
+  kill $CLK
+  el "done"
+  exit 0
+fi
 if [ "$MODE" = reprojected ] || [ "$MODE" = both ]; then
   # Temporal reprojection: one GPU frame per call (a frame needs the one before), so the GPU may clock
   # down during the CPU setup between frames: read the clock log next to the figures.

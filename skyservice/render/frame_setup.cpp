@@ -131,7 +131,7 @@ FrameParams makeFrameParams(const FrameInputs& in)
     if (!q.highCloud)
         flags |= FRAME_FLAG_NO_HIGH_CLOUD;
     f.image = uvec4(req.width, req.height, 0u, flags);
-    f.march = uvec4(q.maxViewSteps, q.lightSamples, 0u, 0u);
+    f.march = uvec4(q.maxViewSteps, q.lightSamples, uint32_t(std::max(q.lightLodDistanceM, 0.0)), 0u);
     f.worldJitter = vec4(float(2.0 * std::tan(req.fovYDeg * M_PI / 360.0) / double(req.height)), 0.0f, 0.0f, 0.0f);
     f.reprojection = uvec4(1u, 0u, 0u, 0u);  // full resolution unless the renderer's reprojected path says otherwise
     return f;
