@@ -7,3 +7,9 @@ gtest_discover_tests(test_gpu TEST_PREFIX "gpu." DISCOVERY_TIMEOUT 60 PROPERTIES
 add_executable(test_param_blocks gpu/test_param_blocks.cpp gpu/scenes.cpp)
 target_link_libraries(test_param_blocks PRIVATE sky_renderer GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_param_blocks TEST_PREFIX "gpu." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+
+# Device memory (issue 5: <= 64 MB at 1920x1080 in both render modes): the tracker's totals with and
+# without the linear frame, the reprojection images after leaving a cloud, the budget at 1080p.
+add_executable(test_memory gpu/test_memory.cpp gpu/scenes.cpp)
+target_link_libraries(test_memory PRIVATE sky_renderer GTest::gtest_main sky_warnings)
+gtest_discover_tests(test_memory TEST_PREFIX "gpu." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)

@@ -11,23 +11,24 @@
 // screen, when the previous depth there disagrees with the expected one (disocclusion), or when it
 // lies outside the range of the fresh 3x3 neighbourhood (colour clamp); a rejected pixel takes its
 // nearest fresh pixel's value, a pixel without any history (off the previous screen, or no history)
-// the fresh pixels interpolated. The result is this frame's cloud image: the composite reads it, and the
-// next frame reprojects it.
+// the fresh pixels interpolated. The result is this frame's cloud history, packed in 64 bits a texel
+// (shaders/lib/cloud_history.glsl): the composite reads the pixels not marched this frame from it (the
+// marched ones from the fresh image, at full precision), and the next frame reprojects it.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/shared/frame_params.h"
+#include "shaders/lib/cloud_history.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE_2D, local_size_y = WORKGROUP_SIZE_2D) in;
 
 layout(binding = 0, std140) PARAMS_BLOCK FrameBlock { FrameParams frame; };
 layout(binding = 1, rgba16f) uniform readonly image2D freshCloud;   // block resolution
 layout(binding = 2, r32f) uniform readonly image2D freshDepth;      // block resolution
-layout(binding = 3, rgba16f) uniform readonly image2D historyCloud; // previous frame, full resolution
-layout(binding = 4, r32f) uniform readonly image2D historyDepth;
-// This frame's cloud image: the composite reads it, and the next frame reprojects it.
-layout(binding = 5, rgba16f) uniform writeonly image2D historyCloudOut;
-layout(binding = 6, r32f) uniform writeonly image2D historyDepthOut;
+// The previous frame's cloud radiance, alpha and depth, full resolution, packed (cloud_history.glsl).
+layout(binding = 3, rgba16ui) uniform readonly uimage2D historyIn;
+// This frame's: the composite reads it (for the pixels not marched this frame), the next frame reprojects it.
+layout(binding = 4, rgba16ui) uniform writeonly uimage2D historyOut;
 
 #include "shaders/clouds/view_ray.glsl"
 
@@ -47,6 +48,19 @@ const float kClampMargin = 0.02f;
 // History within this many pixels of where it was counts as still (not colour-clamped).
 const float kStillPx = 0.01f;
 
+vec4 historyCloud(ivec2 p)
+{
+    float depthM;
+    return unpackCloudHistory(imageLoad(historyIn, p), depthM);
+}
+
+float historyDepth(ivec2 p)
+{
+    float depthM;
+    unpackCloudHistory(imageLoad(historyIn, p), depthM);
+    return depthM;
+}
+
 // Bilinear read of the previous cloud image at pixel coordinates `q` (premultiplied colour and alpha
 // interpolate correctly); a nearest read would shift every reprojected pixel by up to half a pixel.
 vec4 bilinearHistory(vec2 q)
@@ -55,10 +69,10 @@ vec4 bilinearHistory(vec2 q)
     ivec2 i0 = ivec2(floor(t));
     vec2 f = t - vec2(i0);
     ivec2 top = ivec2(frame.image.xy) - 1;
-    vec4 c00 = imageLoad(historyCloud, clamp(i0, ivec2(0), top));
-    vec4 c10 = imageLoad(historyCloud, clamp(i0 + ivec2(1, 0), ivec2(0), top));
-    vec4 c01 = imageLoad(historyCloud, clamp(i0 + ivec2(0, 1), ivec2(0), top));
-    vec4 c11 = imageLoad(historyCloud, clamp(i0 + ivec2(1, 1), ivec2(0), top));
+    vec4 c00 = historyCloud(clamp(i0, ivec2(0), top));
+    vec4 c10 = historyCloud(clamp(i0 + ivec2(1, 0), ivec2(0), top));
+    vec4 c01 = historyCloud(clamp(i0 + ivec2(0, 1), ivec2(0), top));
+    vec4 c11 = historyCloud(clamp(i0 + ivec2(1, 1), ivec2(0), top));
     return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
 }
 
@@ -83,8 +97,7 @@ vec4 freshBilinear(ivec2 pixel, ivec2 phase, int B)
 
 void writeAll(ivec2 pixel, vec4 cloud, float depth)
 {
-    imageStore(historyCloudOut, pixel, cloud);
-    imageStore(historyDepthOut, pixel, vec4(depth, 0.0f, 0.0f, 0.0f));
+    imageStore(historyOut, pixel, packCloudHistory(cloud, depth));
 }
 
 // Projects `v` (from the previous eye, current ENU axes) into the previous image: pixel coordinates
@@ -163,7 +176,7 @@ void main()
         accept = projectPrevious(v, q);
         if (!accept)
             break;
-        previousDepth = imageLoad(historyDepth, ivec2(q)).x;
+        previousDepth = historyDepth(ivec2(q));
         // The previous depth is measured from the previous eye: the distance from this eye.
         depthGuess = previousDepth > 0.0f ? length(frame.previousEye.xyz + normalize(v) * previousDepth) : 0.0f;
     }
@@ -174,7 +187,7 @@ void main()
         // A pixel that lands where it was (a still view) keeps its history whatever its neighbours say:
         // it was marched at this very place, and the 16-frame refresh brings in what changed since.
         bool still = distance(q, vec2(pixel) + 0.5f) < kStillPx;
-        previous = still ? imageLoad(historyCloud, pixel) : bilinearHistory(q);
+        previous = still ? historyCloud(pixel) : bilinearHistory(q);
         // Disocclusion: the fixed point did not settle: the refined depth, seen from the previous eye,
         // disagrees with the previous depth found there (the ray crossed a cloud edge of another distance).
         if (previousDepth > 0.0f && depthGuess > 0.0f)

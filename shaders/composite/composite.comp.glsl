@@ -10,6 +10,7 @@
 #include "shaders/lib/atmosphere.glsl"
 #include "shaders/lib/phase.glsl"
 #include "shaders/lib/tonemap.glsl"
+#include "shaders/lib/cloud_history.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE_2D, local_size_y = WORKGROUP_SIZE_2D) in;
 
@@ -18,10 +19,14 @@ layout(binding = 1, std140) PARAMS_BLOCK AtmosphereBlock { AtmosphereParams atmo
 layout(binding = 2) uniform sampler2D transmittanceLut;
 layout(binding = 3) uniform sampler2D multiscatterLut;
 layout(binding = 4) uniform sampler2D skyViewLut;
+// Full-resolution frames: the march's cloud image and depth. Reprojected frames (FRAME_FLAG_REPROJECTED):
+// the block-resolution fresh pixels, and the packed history of the pixels not marched this frame.
 layout(binding = 5, rgba16f) uniform readonly image2D cloudIn;
 layout(binding = 6, r32f) uniform readonly image2D depthIn;
-layout(binding = 7, rgba16f) uniform writeonly image2D linearOut;
-layout(binding = 8, rgba8) uniform writeonly image2D displayOut;
+layout(binding = 7, rgba16ui) uniform readonly uimage2D historyIn;  // 1x1 stand-in in full-resolution frames
+// The linear frame only when a caller reads it (FRAME_FLAG_NO_LINEAR_OUTPUT clear): 16.6 MB at 1080p.
+layout(binding = 8, rgba16f) uniform writeonly image2D linearOut;
+layout(binding = 9, rgba8) uniform writeonly image2D displayOut;
 
 #include "shaders/lib/atmosphere_sampling.glsl"
 #include "shaders/clouds/view_ray.glsl"
@@ -44,11 +49,25 @@ void main()
                                 frame.moonIrradiance.rgb);
     }
 
-    vec4 cloud = imageLoad(cloudIn, pixel);
+    vec4 cloud;
+    float depth;
+    const int B = int(frame.reprojection.x);
+    ivec2 block = pixel / max(B, 1);
+    if ((frame.image.w & FRAME_FLAG_REPROJECTED) == 0u)
+    {
+        cloud = imageLoad(cloudIn, pixel);
+        depth = imageLoad(depthIn, pixel).x;
+    }
+    else if (pixel == block * B + ivec2(int(frame.reprojection.y), int(frame.reprojection.z)))
+    {
+        cloud = imageLoad(cloudIn, block);
+        depth = imageLoad(depthIn, block).x;
+    }
+    else
+        cloud = unpackCloudHistory(imageLoad(historyIn, pixel), depth);
     vec3 color = sky;
     if (cloud.a > 0.0f)
     {
-        float depth = imageLoad(depthIn, pixel).x;
         vec3 inscatter;
         vec3 transmittance;
         aerialPerspective(transmittanceLut, multiscatterLut, atmosphere, vec3(0.0f, 0.0f, rc), dir, depth,
@@ -56,7 +75,8 @@ void main()
                           frame.moonIrradiance.rgb, inscatter, transmittance);
         color = sky * (1.0f - cloud.a) + cloud.rgb * transmittance + inscatter * cloud.a;
     }
-    imageStore(linearOut, pixel, vec4(color, 1.0f));
+    if ((frame.image.w & FRAME_FLAG_NO_LINEAR_OUTPUT) == 0u)
+        imageStore(linearOut, pixel, vec4(color, 1.0f));
     vec3 display = encodeSrgb(tonemapAces(color * frame.exposure.x));
     imageStore(displayOut, pixel, vec4(display, 1.0f));
 }

@@ -59,5 +59,7 @@ struct FrameParams
 // frame flags
 #define FRAME_FLAG_NO_DETAIL 1u      // skip detail erosion (tests of the base shape)
 #define FRAME_FLAG_NO_HIGH_CLOUD 2u  // skip the 2D cirrus layer
+#define FRAME_FLAG_NO_LINEAR_OUTPUT 4u  // the composite writes no linear frame (none was asked for: 1x1 stand-in bound)
+#define FRAME_FLAG_REPROJECTED 8u    // the composite takes fresh pixels from the block-resolution image, the rest from the packed history
 
 #endif

@@ -76,20 +76,25 @@ bool writeRenderFiles(const std::string& prefix, const ViewRequest& request, con
     if (!writePng(prefix + ".png", png, error))
         return false;
 
-    std::vector<float> cloud = unpackHalves(result.cloudRgbaHalf);
-    std::vector<float> linear = unpackHalves(result.linearRgbaHalf);
-    std::vector<ExrChannel> channels = {
-        {"R", ExrPixelType::Half, cloud.data() + 0, 4},
-        {"G", ExrPixelType::Half, cloud.data() + 1, 4},
-        {"B", ExrPixelType::Half, cloud.data() + 2, 4},
-        {"A", ExrPixelType::Half, cloud.data() + 3, 4},
-        {"Z", ExrPixelType::Float, result.cloudDepthM.data(), 1},
-        {"sky.R", ExrPixelType::Half, linear.data() + 0, 4},
-        {"sky.G", ExrPixelType::Half, linear.data() + 1, 4},
-        {"sky.B", ExrPixelType::Half, linear.data() + 2, 4},
-    };
-    if (!writeExr(prefix + ".exr", result.width, result.height, channels, error))
-        return false;
+    // The EXR needs the linear frame, which a render makes only when asked (QualitySettings::linearOutput).
+    const bool exr = !result.linearRgbaHalf.empty();
+    if (exr)
+    {
+        std::vector<float> cloud = unpackHalves(result.cloudRgbaHalf);
+        std::vector<float> linear = unpackHalves(result.linearRgbaHalf);
+        std::vector<ExrChannel> channels = {
+            {"R", ExrPixelType::Half, cloud.data() + 0, 4},
+            {"G", ExrPixelType::Half, cloud.data() + 1, 4},
+            {"B", ExrPixelType::Half, cloud.data() + 2, 4},
+            {"A", ExrPixelType::Half, cloud.data() + 3, 4},
+            {"Z", ExrPixelType::Float, result.cloudDepthM.data(), 1},
+            {"sky.R", ExrPixelType::Half, linear.data() + 0, 4},
+            {"sky.G", ExrPixelType::Half, linear.data() + 1, 4},
+            {"sky.B", ExrPixelType::Half, linear.data() + 2, 4},
+        };
+        if (!writeExr(prefix + ".exr", result.width, result.height, channels, error))
+            return false;
+    }
 
     nlohmann::json j;
     j["view"] = {{"lat", request.pose.latDeg},         {"lon", request.pose.lonDeg},
@@ -124,9 +129,10 @@ bool writeRenderFiles(const std::string& prefix, const ViewRequest& request, con
                     "this metadata"},
             {"png", "-shadow.png: grey, 8-bit linear transmittance (255 = clear), not sRGB"}};
     }
-    j["files"] = {{"png", "tone-mapped sRGB, sky and clouds"},
-                  {"exr", "R,G,B: premultiplied linear cloud radiance; A: 1 - cloud transmittance; Z: "
-                          "transmittance-weighted cloud distance (m, 0 where A = 0); sky.R/G/B: final linear frame"}};
+    j["files"] = {{"png", "tone-mapped sRGB, sky and clouds"}};
+    if (exr)
+        j["files"]["exr"] = "R,G,B: premultiplied linear cloud radiance; A: 1 - cloud transmittance; Z: "
+                            "transmittance-weighted cloud distance (m, 0 where A = 0); sky.R/G/B: final linear frame";
     return writeJsonAtomic(prefix + ".json", j, error);
 }
 

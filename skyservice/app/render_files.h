@@ -21,8 +21,8 @@ struct RenderFacts
     nlohmann::json quality;      ///< the quality settings used
 };
 
-/// Also writes the shadow map files (writeShadowMapFiles) and its metadata under "shadowMap" when the
-/// result has one.
+/// PREFIX.exr only when the result has the linear frame (QualitySettings::linearOutput). Also writes the
+/// shadow map files (writeShadowMapFiles) and its metadata under "shadowMap" when the result has one.
 bool writeRenderFiles(const std::string& prefix, const ViewRequest& request, const RenderResult& result,
                       const RenderFacts& facts, std::string& error);
 

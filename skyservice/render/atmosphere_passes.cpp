@@ -164,13 +164,13 @@ void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camer
 }
 
 void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request, const Image& cloud,
-                     const Image& depth)
+                     const Image& depth, const Image& history, const Image& linear)
 {
     dispatch(r.ctx, cmd, r.compositeProgram, request.width, request.height, 1, nullptr, 0,
              {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.atmosphereUniforms),
               DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.multiscatterLut, r.linearClamp),
               DescriptorInfo(r.skyViewLut, r.linearRepeat), DescriptorInfo(cloud), DescriptorInfo(depth),
-              DescriptorInfo(r.linearImage), DescriptorInfo(r.displayImage)});
+              DescriptorInfo(history), DescriptorInfo(linear), DescriptorInfo(r.displayImage)});
 }
 
 }  // namespace sky

@@ -31,7 +31,10 @@ void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camer
                       const FrameInputs& in);
 
 /// Records the composite pass (sky + clouds + aerial perspective -> linear and display images).
+/// `cloud`, `depth`: the march's images (block resolution in reprojected frames); `history`: the packed
+/// history of the pixels not marched (a 1x1 stand-in in full-resolution frames); `linear`: the linear
+/// frame, or a 1x1 stand-in the shader does not write (FRAME_FLAG_NO_LINEAR_OUTPUT).
 void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request, const Image& cloud,
-                     const Image& depth);
+                     const Image& depth, const Image& history, const Image& linear);
 
 }  // namespace sky

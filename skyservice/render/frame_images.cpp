@@ -11,30 +11,53 @@ bool hasSize(const Image& img, uint32_t width, uint32_t height)
     return img.image && img.extent.width == width && img.extent.height == height;
 }
 
+// Makes `img` (destroyed first) and adds it to the images to move to the GENERAL layout.
+SkyStatus remake(Renderer& r, Image& img, const ImageDesc& d, const char* name, std::vector<Image*>& made)
+{
+    destroyImage(r.ctx, r.memory, img);
+    SKY_TRY(createImage(r.ctx, r.memory, img, d, name));
+    made.push_back(&img);
+    return SkyStatus::success();
+}
+
+SkyStatus toGeneral(Renderer& r, const std::vector<Image*>& made)
+{
+    if (made.empty())
+        return SkyStatus::success();
+    OneShot shot;
+    SKY_TRY(beginOneShot(r.ctx, shot));
+    for (Image* img : made)
+        transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    return endOneShot(r.ctx, shot);
+}
+
 }  // namespace
 
-SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height, bool cloudImages)
+SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height, bool cloudImages, bool linear)
 {
     const bool frameOk = hasSize(r.displayImage, width, height);
     const bool cloudOk = !cloudImages || hasSize(r.cloudImage, width, height);
-    if (frameOk && cloudOk)
+    const bool linearOk = linear ? hasSize(r.linearImage, width, height) : !r.linearImage.image;
+    if (frameOk && cloudOk && linearOk)
         return SkyStatus::success();
-    VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize or first full frame only: never in steady state
+    // Resize, first full frame, or linear output switched: never in steady state.
+    VK_TRY(vkQueueWaitIdle(r.ctx.queue));
     std::vector<Image*> made;
     ImageDesc d;
     d.width = width;
     d.height = height;
+    d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
     if (!frameOk)
     {
-        destroyImage(r.ctx, r.memory, r.linearImage);
-        destroyImage(r.ctx, r.memory, r.displayImage);
-        d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-        SKY_TRY(createImage(r.ctx, r.memory, r.linearImage, d, "linear frame"));
         d.format = VK_FORMAT_R8G8B8A8_UNORM;
-        d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-        SKY_TRY(createImage(r.ctx, r.memory, r.displayImage, d, "display frame"));
-        d.usage = ImageDesc{}.usage;
-        made = {&r.linearImage, &r.displayImage};
+        SKY_TRY(remake(r, r.displayImage, d, "display frame", made));
+    }
+    if (!linearOk || !frameOk)
+    {
+        destroyImage(r.ctx, r.memory, r.linearImage);
+        d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+        if (linear)
+            SKY_TRY(remake(r, r.linearImage, d, "linear frame", made));
     }
     if (!frameOk || !cloudOk)  // a resize drops cloud images of the old size
     {
@@ -43,70 +66,44 @@ SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height, bool 
         if (cloudImages)
         {
             d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-            SKY_TRY(createImage(r.ctx, r.memory, r.cloudImage, d, "cloud radiance"));
+            SKY_TRY(remake(r, r.cloudImage, d, "cloud radiance", made));
             d.format = VK_FORMAT_R32_SFLOAT;
-            SKY_TRY(createImage(r.ctx, r.memory, r.depthImage, d, "cloud depth"));
-            made.push_back(&r.cloudImage);
-            made.push_back(&r.depthImage);
+            SKY_TRY(remake(r, r.depthImage, d, "cloud depth", made));
         }
     }
-    OneShot shot;
-    SKY_TRY(beginOneShot(r.ctx, shot));
-    for (Image* img : made)
-        transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-    return endOneShot(r.ctx, shot);
+    return toGeneral(r, made);
 }
 
 SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height, uint32_t blockPx)
 {
-    OneShot shot;
-    bool fresh = false;
-    if (!(r.historyCloud[0].image && r.historyCloud[0].extent.width == width &&
-          r.historyCloud[0].extent.height == height))
+    std::vector<Image*> made;
+    ImageDesc d;
+    d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+    if (!hasSize(r.history[0], width, height))
     {
         VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize only: never in steady state
-        for (Image* img : {&r.freshCloudImage, &r.freshDepthImage, &r.historyCloud[0], &r.historyCloud[1],
-                           &r.historyDepth[0], &r.historyDepth[1]})
-            destroyImage(r.ctx, r.memory, *img);
         r.reprojection.valid = false;
-        ImageDesc d;
-        d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
         d.width = width;
         d.height = height;
-        for (int k = 0; k < 2; ++k)
-        {
-            d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-            SKY_TRY(createImage(r.ctx, r.memory, r.historyCloud[k], d, "cloud radiance history"));
-            d.format = VK_FORMAT_R32_SFLOAT;
-            SKY_TRY(createImage(r.ctx, r.memory, r.historyDepth[k], d, "cloud depth history"));
-        }
-        SKY_TRY(beginOneShot(r.ctx, shot));
-        for (Image* img : {&r.historyCloud[0], &r.historyCloud[1], &r.historyDepth[0], &r.historyDepth[1]})
-            transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-        fresh = true;
+        d.format = VK_FORMAT_R16G16B16A16_UINT;  // shaders/lib/cloud_history.glsl
+        for (Image& h : r.history)
+            SKY_TRY(remake(r, h, d, "cloud history (radiance, alpha, depth packed)", made));
     }
-    uint32_t blocksX = (width + blockPx - 1) / blockPx, blocksY = (height + blockPx - 1) / blockPx;
-    if (!(r.freshCloudImage.image && r.freshCloudImage.extent.width >= blocksX &&
-          r.freshCloudImage.extent.height >= blocksY))
+    // The fresh images have the size of the block in use: they grow when the eye nears or enters a cloud
+    // layer (every pixel is marched inside one: 25 MB at 1080p) and shrink back when it leaves. They only
+    // hold this frame's marched pixels, so replacing them never touches the history.
+    const uint32_t blocksX = (width + blockPx - 1) / blockPx, blocksY = (height + blockPx - 1) / blockPx;
+    if (!hasSize(r.freshCloudImage, blocksX, blocksY))
     {
-        VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // first frame at a finer block only
-        destroyImage(r.ctx, r.memory, r.freshCloudImage);
-        destroyImage(r.ctx, r.memory, r.freshDepthImage);
-        ImageDesc d;
-        d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+        VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // a change of march block only
         d.width = blocksX;
         d.height = blocksY;
         d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-        SKY_TRY(createImage(r.ctx, r.memory, r.freshCloudImage, d, "fresh cloud radiance (one pixel per block)"));
+        SKY_TRY(remake(r, r.freshCloudImage, d, "fresh cloud radiance (one pixel per block)", made));
         d.format = VK_FORMAT_R32_SFLOAT;
-        SKY_TRY(createImage(r.ctx, r.memory, r.freshDepthImage, d, "fresh cloud depth (one pixel per block)"));
-        if (!fresh)
-            SKY_TRY(beginOneShot(r.ctx, shot));
-        for (Image* img : {&r.freshCloudImage, &r.freshDepthImage})
-            transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-        fresh = true;
+        SKY_TRY(remake(r, r.freshDepthImage, d, "fresh cloud depth (one pixel per block)", made));
     }
-    return fresh ? endOneShot(r.ctx, shot) : SkyStatus::success();
+    return toGeneral(r, made);
 }
 
 }  // namespace sky

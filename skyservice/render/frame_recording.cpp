@@ -4,9 +4,59 @@
 #include "skyservice/render/atmosphere_passes.h"
 
 #include <cstring>
+#include <glm/gtc/packing.hpp>
 
 namespace sky
 {
+namespace
+{
+
+namespace glsl
+{
+using namespace glm;
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#include "shaders/lib/cloud_history.glsl"
+#pragma GCC diagnostic pop
+}  // namespace glsl
+
+// A reprojected frame's cloud image on the host, as the composite sees it: `result` holds the fresh
+// (block-resolution) pixels on entry and the full-resolution frame on return, the marched pixels from
+// them, the others unpacked from the history texels in `packed` (RGBA16UI, shaders/lib/cloud_history.glsl).
+void mergeReprojectedCloud(const Renderer& r, const ViewRequest& request, const std::vector<uint8_t>& packed,
+                           RenderResult& result)
+{
+    const uint32_t w = request.width, h = request.height, B = r.reprojection.block.blockPx;
+    const glm::uvec2 phase = reprojectionPhase(r.reprojection.frameIndex, B);
+    const uint32_t freshWidth = r.freshCloudImage.extent.width;
+    std::vector<uint16_t> cloud(size_t(w) * h * 4);
+    std::vector<float> depth(size_t(w) * h);
+    std::vector<uint16_t> texels(packed.size() / 2);
+    std::memcpy(texels.data(), packed.data(), packed.size());
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x)
+        {
+            const size_t i = size_t(y) * w + x;
+            const uint32_t bx = x / B, by = y / B;
+            if (x == bx * B + phase.x && y == by * B + phase.y)
+            {
+                const size_t f = size_t(by) * freshWidth + bx;
+                std::memcpy(&cloud[i * 4], &result.cloudRgbaHalf[f * 4], 4 * sizeof(uint16_t));
+                depth[i] = result.cloudDepthM[f];
+                continue;
+            }
+            const glm::uvec4 t(texels[i * 4], texels[i * 4 + 1], texels[i * 4 + 2], texels[i * 4 + 3]);
+            float depthM = 0.0f;
+            const glm::vec4 c = glsl::unpackCloudHistory(t, depthM);
+            for (int k = 0; k < 4; ++k)
+                cloud[i * 4 + size_t(k)] = glm::packHalf1x16(c[k]);
+            depth[i] = depthM;
+        }
+    result.cloudRgbaHalf = std::move(cloud);
+    result.cloudDepthM = std::move(depth);
+}
+
+}  // namespace
 
 SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame& camera, const SunMoon& sunMoon,
                      const FrameInputs& in, RenderResult& result)
@@ -34,22 +84,21 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
               DescriptorInfo(marchCloud), DescriptorInfo(marchDepth)});
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsClouds);
-    // The frame's cloud image: the march's output at full resolution, or the history image the
-    // reconstruct pass writes this frame (which the next frame reprojects).
+    // Reprojected: the packed history the reconstruct pass writes this frame (which the next frame
+    // reprojects) holds the pixels not marched this frame; the composite and the readback take the
+    // marched ones from the fresh images.
     const uint32_t next = r.reprojection.current ^ 1u;
-    const Image& frameCloud = reprojected ? r.historyCloud[next] : r.cloudImage;
-    const Image& frameDepth = reprojected ? r.historyDepth[next] : r.depthImage;
     if (reprojected)
     {
         const uint32_t prev = r.reprojection.current;
         dispatch(r.ctx, cmd, r.reconstructProgram, request.width, request.height, 1, nullptr, 0,
                  {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.freshCloudImage), DescriptorInfo(r.freshDepthImage),
-                  DescriptorInfo(r.historyCloud[prev]), DescriptorInfo(r.historyDepth[prev]),
-                  DescriptorInfo(frameCloud), DescriptorInfo(frameDepth)});
+                  DescriptorInfo(r.history[prev]), DescriptorInfo(r.history[next])});
         computeBarrier(cmd);
     }
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsReconstruct);
-    recordComposite(r, cmd, request, frameCloud, frameDepth);
+    recordComposite(r, cmd, request, marchCloud, marchDepth, reprojected ? r.history[next] : r.historyStandIn,
+                    in.quality->linearOutput ? r.linearImage : r.linearStandIn);
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsComposite);
     SKY_TRY(endOneShot(r.ctx, shot));
@@ -74,15 +123,24 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
     if (!in.quality->readback)
         return SkyStatus::success();  // timing runs: the GPU work is done, nothing to copy
     std::vector<uint8_t> bytes;
-    SKY_TRY(readbackImage(r.ctx, r.memory, frameCloud, bytes));
+    SKY_TRY(readbackImage(r.ctx, r.memory, marchCloud, bytes));
     result.cloudRgbaHalf.resize(bytes.size() / 2);
     std::memcpy(result.cloudRgbaHalf.data(), bytes.data(), bytes.size());
-    SKY_TRY(readbackImage(r.ctx, r.memory, frameDepth, bytes));
+    SKY_TRY(readbackImage(r.ctx, r.memory, marchDepth, bytes));
     result.cloudDepthM.resize(bytes.size() / 4);
     std::memcpy(result.cloudDepthM.data(), bytes.data(), bytes.size());
-    SKY_TRY(readbackImage(r.ctx, r.memory, r.linearImage, bytes));
-    result.linearRgbaHalf.resize(bytes.size() / 2);
-    std::memcpy(result.linearRgbaHalf.data(), bytes.data(), bytes.size());
+    if (reprojected)
+    {
+        SKY_TRY(readbackImage(r.ctx, r.memory, r.history[next], bytes));
+        mergeReprojectedCloud(r, request, bytes, result);
+    }
+    result.linearRgbaHalf.clear();
+    if (in.quality->linearOutput)
+    {
+        SKY_TRY(readbackImage(r.ctx, r.memory, r.linearImage, bytes));
+        result.linearRgbaHalf.resize(bytes.size() / 2);
+        std::memcpy(result.linearRgbaHalf.data(), bytes.data(), bytes.size());
+    }
     return readbackImage(r.ctx, r.memory, r.displayImage, result.displayRgba8);
 }
 

@@ -130,6 +130,10 @@ FrameParams makeFrameParams(const FrameInputs& in)
         flags |= FRAME_FLAG_NO_DETAIL;
     if (!q.highCloud)
         flags |= FRAME_FLAG_NO_HIGH_CLOUD;
+    if (!q.linearOutput)
+        flags |= FRAME_FLAG_NO_LINEAR_OUTPUT;
+    if (q.reprojected)
+        flags |= FRAME_FLAG_REPROJECTED;
     f.image = uvec4(req.width, req.height, 0u, flags);
     f.march = uvec4(q.maxViewSteps, q.lightSamples, uint32_t(std::max(q.lightLodDistanceM, 0.0)), 0u);
     f.worldJitter = vec4(float(2.0 * std::tan(req.fovYDeg * M_PI / 360.0) / double(req.height)), 0.0f, 0.0f, 0.0f);

@@ -46,6 +46,10 @@ struct QualitySettings
     uint32_t accumulationFrames = 1;     ///< frames averaged, each with new march jitter and sub-pixel offset
     uint32_t shadowSteps = 48;           ///< density samples per shadow-map texel along the light ray
     bool readback = true;                ///< copy the images to RenderResult; false leaves them empty (sky-bench)
+    /// Render the linear frame (RenderResult::linearRgbaHalf: EXR files, statistics). Without it the
+    /// composite writes only the display image and the renderer holds no linear image (16.6 MB at
+    /// 1080p); the service and sky-bench turn it off unless a caller reads it.
+    bool linearOutput = true;
     /// Temporal reprojection (skyservice/render/reprojection.h): march one pixel of every 4x4 block and
     /// reproject the rest from the renderer's previous reprojected frame. accumulationFrames is ignored.
     bool reprojected = false;
@@ -70,8 +74,11 @@ struct RenderResult
     uint32_t width = 0;
     uint32_t height = 0;
     std::vector<uint16_t> cloudRgbaHalf;  ///< premultiplied cloud radiance + alpha (1 - transmittance), half floats
-    std::vector<float> cloudDepthM;       ///< transmittance-weighted cloud distance (m), 0 where alpha is 0
-    std::vector<uint16_t> linearRgbaHalf; ///< final linear radiance (sky + clouds), half floats
+    /// Transmittance-weighted cloud distance (m), 0 where alpha is 0. Reprojected frames: the pixels not
+    /// marched this frame come from the packed history (shaders/lib/cloud_history.glsl): radiance to
+    /// 2^-10 of the brightest channel, alpha to 1/4094, depth to 1.2e-4 relative.
+    std::vector<float> cloudDepthM;
+    std::vector<uint16_t> linearRgbaHalf; ///< final linear radiance (sky + clouds), half floats; empty without QualitySettings::linearOutput
     std::vector<uint8_t> displayRgba8;    ///< tone-mapped sRGB
     std::map<std::string, double> gpuMs;  ///< GPU time per pass (ms)
     double cpuSetupMs = 0;                ///< CPU time to prepare the frame (weather window etc.)

@@ -43,7 +43,7 @@ SkyStatus generateNoise(Renderer& r, uint32_t seed)
     SKY_TRY(beginOneShot(r.ctx, shot));
     vkCmdResetQueryPool(shot.cmd, r.timestamps, 0, kTsCount);
     vkCmdWriteTimestamp(shot.cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r.timestamps, 0);
-    for (Image* img : {&r.baseNoise, &r.detailNoise, &r.curlNoise})
+    for (Image* img : {&r.baseNoise, &r.detailNoise, &r.curlNoise, &r.linearStandIn, &r.historyStandIn})
         transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     NoisePush push = {seed, BASE_NOISE_SIZE, 0, 0};
     dispatch(r.ctx, shot.cmd, r.baseNoiseProgram, BASE_NOISE_SIZE, BASE_NOISE_SIZE, BASE_NOISE_SIZE, push,
@@ -155,6 +155,11 @@ SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
     d.layers = WEATHER_WINDOW_SLICES;
     d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
     SKY_TRY(createImage(r.ctx, r.memory, r.weatherWindowImage, d, "weather window"));
+    d = ImageDesc{};
+    d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+    SKY_TRY(createImage(r.ctx, r.memory, r.linearStandIn, d, "linear frame stand-in (1x1)"));
+    d.format = VK_FORMAT_R16G16B16A16_UINT;
+    SKY_TRY(createImage(r.ctx, r.memory, r.historyStandIn, d, "cloud history stand-in (1x1)"));
 
     // Usable as uniform and as storage buffer: the shaders read the parameters from uniform buffers, or
     // from storage buffers on lavapipe (shaders/shared/bindings.h PARAMS_BLOCK): with uniform buffers
@@ -179,8 +184,8 @@ void destroyRenderer(Renderer& r)
     vkDeviceWaitIdle(r.ctx.device);  // shutdown only
     for (Image* img : {&r.baseNoise, &r.detailNoise, &r.curlNoise, &r.blueNoise, &r.transmittanceLut,
                        &r.multiscatterLut, &r.skyViewLut, &r.weatherWindowImage, &r.cloudImage, &r.depthImage,
-                       &r.linearImage, &r.displayImage, &r.freshCloudImage, &r.freshDepthImage, &r.historyCloud[0],
-                       &r.historyCloud[1], &r.historyDepth[0], &r.historyDepth[1]})
+                       &r.linearImage, &r.displayImage, &r.freshCloudImage, &r.freshDepthImage, &r.history[0],
+                       &r.history[1], &r.linearStandIn, &r.historyStandIn})
         destroyImage(r.ctx, r.memory, *img);
     destroyShadowMapPass(r.ctx, r.memory, r.shadowPass);
     destroyBuffer(r.ctx, r.memory, r.frameUniforms);
@@ -225,7 +230,7 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     const WeatherWindow& window = r.window->window;
     const EyeOnWindow eyeOnWindow =
         placeEyeOnWindow(window.centreLatDeg, window.centreLonDeg, camera.eye.latDeg, camera.eye.lonDeg);
-    SKY_TRY(ensureOutputImages(r, request.width, request.height, !quality.reprojected));
+    SKY_TRY(ensureOutputImages(r, request.width, request.height, !quality.reprojected, quality.linearOutput));
     if (quality.reprojected)
     {
         r.reprojection.block = chooseMarchBlock(window, camera.eye.altitudeM, eyeOnWindow.offsetM);

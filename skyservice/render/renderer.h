@@ -42,11 +42,16 @@ struct Renderer
     Image baseNoise, detailNoise, curlNoise, blueNoise;
     Image transmittanceLut, multiscatterLut, skyViewLut;
     Image weatherWindowImage;
-    Image cloudImage, depthImage, linearImage, displayImage;
-    // Reprojection (created on the first reprojected frame): the marched pixels at block resolution,
-    // and the reconstructed cloud image and depth of the last two frames (ping-pong).
+    Image cloudImage, depthImage, displayImage;
+    Image linearImage;  ///< only while frames ask for it (QualitySettings::linearOutput)
+    // Reprojection (created on the first reprojected frame): the marched pixels at block resolution
+    // (the size of the block in use), and the reconstructed cloud radiance, alpha and depth of the last
+    // two frames (ping-pong), packed in one 64-bit texel (shaders/lib/cloud_history.glsl).
     Image freshCloudImage, freshDepthImage;
-    Image historyCloud[2], historyDepth[2];
+    Image history[2];
+    // 1x1 images bound where a pass has nothing to read or write (every binding needs an image):
+    // the linear frame when none is asked for, the history in full-resolution frames.
+    Image linearStandIn, historyStandIn;
     ReprojectionHistory reprojection;
     Buffer frameUniforms, atmosphereUniforms;
     VkSampler linearRepeat = VK_NULL_HANDLE, linearClamp = VK_NULL_HANDLE, nearestRepeat = VK_NULL_HANDLE;

@@ -8,6 +8,7 @@
 #include "skyservice/sky/builtin_weather.h"
 #include "skyservice/sky/ephemeris.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -89,6 +90,9 @@ struct RenderLoop::Impl
     double weatherSampledAtS = 0;
     VulkanExport exporter;
     std::string lastLoggedError;
+    /// write_files requests that came while the frames had no linear frame (no EXR subscription): they
+    /// are written after the next frame, which makes it.
+    std::vector<RenderJob> pendingWriteFiles;
 
     void run();
     void renderFrame(uint64_t id, ViewRequest request, double simTimeS, const WeatherState& weather,
@@ -193,7 +197,13 @@ void RenderLoop::Impl::renderFrame(uint64_t id, ViewRequest request, double simT
         weatherSampledAtS = simTimeS;
         lastWeatherSource = weather.source;
     }
-    SkyStatus status = renderView(r, request, quality, result);
+    // The linear frame (16.6 MB at 1080p) only for EXR files: a files subscription that writes them, or a
+    // write_files request waiting for this frame.
+    QualitySettings frameQuality = quality;
+    frameQuality.linearOutput = !pendingWriteFiles.empty() ||
+                                std::any_of(files.begin(), files.end(),
+                                            [](const FilesSubscription& f) { return f.format != "png"; });
+    SkyStatus status = renderView(r, request, frameQuality, result);
     double ms = std::chrono::duration<double, std::milli>(SteadyClock::now() - start).count();
     std::string error;
     if (status.ok())
@@ -241,6 +251,16 @@ void RenderLoop::Impl::renderFrame(uint64_t id, ViewRequest request, double simT
         if (!writeFiles(sub.dir + name, sub.format, why))
             SKY_LOG_WARN("files subscription: %s", why.c_str());
     }
+    std::vector<RenderJob> waiting;
+    waiting.swap(pendingWriteFiles);
+    for (const RenderJob& job : waiting)
+    {
+        std::string why = status.message;
+        if (status.ok() && writeFiles(job.path, "both", why))
+            reply(job.client, okLine(RequestType::WriteFiles, job.requestId));
+        else
+            reply(job.client, failedLine(job.requestId, why));
+    }
     VkDeviceSize memory = 0;
     {
         std::lock_guard<std::mutex> lock(r.memory.mutex);
@@ -284,6 +304,13 @@ void RenderLoop::Impl::doJob(const RenderJob& job)
     {
         if (!haveFrame)
             reply(job.client, failedLine(job.requestId, "no frame has been rendered yet"));
+        else if (result.linearRgbaHalf.empty())
+        {
+            // The last frame has no linear frame for the EXR: render the next one with it, now.
+            pendingWriteFiles.push_back(job);
+            std::lock_guard<std::mutex> lock(setup.state->mutex);
+            setup.state->renderWantedUpTo = std::max(setup.state->renderWantedUpTo, setup.state->framesStarted + 1);
+        }
         else if (!writeFiles(job.path, "both", error))
             reply(job.client, failedLine(job.requestId, error));
         else

@@ -17,6 +17,7 @@ using namespace glm;
 #include "shaders/lib/cloud_shape.glsl"
 #include "shaders/lib/noise.glsl"
 #include "shaders/lib/world_jitter.glsl"
+#include "shaders/lib/cloud_history.glsl"
 }  // namespace glsl
 #pragma GCC diagnostic pop
 
@@ -251,4 +252,49 @@ TEST(WorldJitter, NeighbouringDirectionsReadNeighbouringTexels)
         moved += dx == 1 && tq.y == tp.y;
     }
     EXPECT_GE(moved, 190) << "one texel angle apart is one texel apart (up to rounding at cell edges)";
+}
+
+// The packed cloud history texel (shaders/lib/cloud_history.glsl, issue 5 memory): its precision, and
+// that unpacking and packing again gives the same bits (a still pixel keeps its history unchanged).
+TEST(CloudHistory, PacksRadianceAlphaAndDepthWithinTheStatedPrecision)
+{
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    float worstColour = 0.0f, worstAlpha = 0.0f, worstDepth = 0.0f;
+    for (int i = 0; i < 20000; ++i)
+    {
+        float a = unit(rng);
+        float bright = std::exp2(unit(rng) * 20.0f - 12.0f);  // 2^-12 .. 2^8: moonlight to sun glints
+        glm::vec4 c(bright * unit(rng), bright * unit(rng), bright, a);
+        float depthM = i % 7 == 0 ? 0.0f : std::exp2(unit(rng) * 21.0f);  // 1 m .. 2000 km
+        float back = -1.0f;
+        glm::vec4 u = glsl::unpackCloudHistory(glsl::packCloudHistory(c, depthM), back);
+        for (int k = 0; k < 3; ++k)
+            worstColour = std::max(worstColour, std::abs(u[k] - c[k]) / bright);
+        worstAlpha = std::max(worstAlpha, std::abs(u.w - a));
+        if (depthM == 0.0f)
+            ASSERT_EQ(back, 0.0f) << "no cloud stays exactly 0";
+        else  // log(1 + d): relative error 1.16e-4 * (1 + d) / d, so 1.2e-4 beyond 100 m
+            worstDepth = std::max(worstDepth, std::abs(back - depthM) / (depthM + 1.0f));
+        // Unpack -> pack is the identity on packed texels.
+        glm::uvec4 p = glsl::packCloudHistory(c, depthM);
+        glm::vec4 again = glsl::unpackCloudHistory(p, back);
+        ASSERT_EQ(glsl::packCloudHistory(again, back), p) << i;
+    }
+    std::printf("cloud history: colour error %.2e of the brightest channel, alpha %.2e, depth %.2e relative\n",
+                double(worstColour), double(worstAlpha), double(worstDepth));
+    EXPECT_LE(worstColour, std::exp2(-10.0f) * 1.0001f);
+    EXPECT_LE(worstAlpha, 0.5f / 2047.0f + 1e-6f);
+    EXPECT_LT(worstDepth, 1.2e-4f);
+    float at1km = 0.0f, at100km = 0.0f;
+    glsl::unpackCloudHistory(glsl::packCloudHistory(glm::vec4(0.0f), 1000.3f), at1km);
+    glsl::unpackCloudHistory(glsl::packCloudHistory(glm::vec4(0.0f), 100003.0f), at100km);
+    EXPECT_NEAR(at1km, 1000.3f, 0.12f);
+    EXPECT_NEAR(at100km, 100003.0f, 12.0f);
+    // Clamped, never wrapped: negative input, overflow, a black cloud.
+    float d = 0.0f;
+    glm::vec4 big = glsl::unpackCloudHistory(glsl::packCloudHistory(glm::vec4(1e9f, -1.0f, 0.0f, 2.0f), 1e8f), d);
+    EXPECT_EQ(big, glm::vec4(glsl::kHistoryMaxRadiance, 0.0f, 0.0f, 1.0f));
+    EXPECT_NEAR(d, glsl::kHistoryMaxDepthM, 0.001f * glsl::kHistoryMaxDepthM);
+    EXPECT_EQ(glsl::unpackCloudHistory(glsl::packCloudHistory(glm::vec4(0.0f), 0.0f), d), glm::vec4(0.0f));
 }
