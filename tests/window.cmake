@@ -1,6 +1,8 @@
 # The weather window for a moving eye (issue 5): the lattice of window centres on the CPU (window.*,
 # label cpu), and on the GPU (lavapipe, validation on) that crossing a cell edge moves no cloud and that
-# a flight makes its windows on the worker thread, not on the frame path.
+# a flight makes its windows on the worker thread, not on the frame path. A new weather staged off the
+# frame path and the speed-dependent look-ahead: their CPU logic (window.WeatherStage.*,
+# window.WindowLookAhead.*, label cpu) and on the GPU (window.WeatherSwap.*).
 add_executable(test_window_lattice unit/test_window_lattice.cpp)
 target_link_libraries(test_window_lattice PRIVATE sky_renderer GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_window_lattice TEST_PREFIX "window." DISCOVERY_TIMEOUT 30 PROPERTIES LABELS cpu)
@@ -8,3 +10,11 @@ gtest_discover_tests(test_window_lattice TEST_PREFIX "window." DISCOVERY_TIMEOUT
 add_executable(test_window_motion gpu/test_window_motion.cpp gpu/scenes.cpp)
 target_link_libraries(test_window_motion PRIVATE sky_renderer GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_window_motion TEST_PREFIX "window." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+
+add_executable(test_weather_stage unit/test_weather_stage.cpp)
+target_link_libraries(test_weather_stage PRIVATE sky_renderer GTest::gtest_main sky_warnings)
+gtest_discover_tests(test_weather_stage TEST_PREFIX "window." DISCOVERY_TIMEOUT 30 PROPERTIES LABELS cpu TIMEOUT 300)
+
+add_executable(test_weather_swap gpu/test_weather_swap.cpp gpu/scenes.cpp)
+target_link_libraries(test_weather_swap PRIVATE sky_renderer GTest::gtest_main sky_warnings)
+gtest_discover_tests(test_weather_swap TEST_PREFIX "window." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)

@@ -2,6 +2,7 @@
 #include "skyservice/app/render_files.h"
 
 #include "skyservice/output/image_files.h"
+#include "skyservice/sky/ephemeris.h"
 
 #include <glm/gtc/packing.hpp>
 
@@ -106,6 +107,9 @@ bool writeRenderFiles(const std::string& prefix, const ViewRequest& request, con
                   {"heading", "degrees clockwise from north"}, {"pitch", "degrees, + nose up"},
                   {"roll", "degrees, + right wing down"}, {"fov", "vertical, degrees"}};
     j["weather"] = facts.weatherSource;
+    j["weatherValidTime"] = formatIso8601Utc(result.weatherValidTimeUnixS);  // of the snapshot drawn
+    if (facts.weatherVersion != 0)
+        j["weatherVersion"] = facts.weatherVersion;
     j["sun"] = {{"azimuthDeg", result.sunAzimuthDeg}, {"elevationDeg", result.sunElevationDeg}};
     j["moon"] = {{"azimuthDeg", result.moonAzimuthDeg},
                  {"elevationDeg", result.moonElevationDeg},

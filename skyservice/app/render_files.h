@@ -14,6 +14,7 @@ namespace sky
 struct RenderFacts
 {
     std::string weatherSource;   ///< "builtin" or the snapshot path
+    uint64_t weatherVersion = 0; ///< the service's weather version (status weather.version); 0: not written
     std::string timeIso;         ///< the --time given, normalised
     std::string deviceName;
     std::string driver;

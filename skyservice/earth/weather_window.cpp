@@ -107,7 +107,7 @@ private:
 // Bilinear value of a field, leaving NaN corners out (see the header for the rules).
 float interpolate(const std::vector<float>& field, const GridSample& s, size_t cellCount, float fallback)
 {
-    if (field.size() != cellCount)
+    if (cellCount == 0 || field.size() != cellCount)  // an empty grid (no weather given) has no values
         return fallback;
     double sum = 0;
     double weightSum = 0;
@@ -148,7 +148,7 @@ float interpolateCoverage(const std::vector<float>& coverage, const std::vector<
 
 float nearestType(const std::vector<uint8_t>& type, const GridSample& s, size_t cellCount)
 {
-    if (type.size() != cellCount)
+    if (cellCount == 0 || type.size() != cellCount)
         return float(CLOUD_TYPE_NONE);
     const uint8_t t = type[s.nearest];
     return t <= CLOUD_TYPE_STRATUS ? float(t) : float(CLOUD_TYPE_NONE);

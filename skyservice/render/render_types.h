@@ -86,6 +86,10 @@ struct RenderResult
     double moonAzimuthDeg = 0, moonElevationDeg = 0, moonIlluminatedFraction = 0;
     double exposure = 1;
     bool moonIsKeyLight = false;
+    /// The weather this frame drew: the renderer's version of it (one per setWeather or staged weather
+    /// swapped in: a staged weather shows from a frame that depends on timing) and its valid time.
+    uint64_t weatherVersion = 0;
+    int64_t weatherValidTimeUnixS = 0;
     /// Reprojected frames: one pixel of every marchBlockPx^2 was marched (4 normally; 2 near and 1
     /// inside a cloud layer, skyservice/render/reprojection.h), and why it was not 4 ("" when it was).
     /// Full-resolution frames: 1 and "".

@@ -206,9 +206,28 @@ void destroyRenderer(Renderer& r)
 void setWeather(Renderer& r, const WeatherSnapshot& snapshot)
 {
     r.weather = std::make_shared<const WeatherSnapshot>(snapshot);
-    ++r.weatherVersion;
+    r.weatherVersion = ++r.weatherVersionsIssued;
+    cancelStage(r.weatherStage);  // older than this one
     dropHistory(r);  // the previous frame shows other clouds
 }
+
+uint64_t stageWeather(Renderer& r, WeatherMaker make, StageSwap swap)
+{
+    const uint64_t version = ++r.weatherVersionsIssued;
+    stage(r.weatherStage, version, std::move(make), swap);
+    return version;
+}
+
+uint64_t stageWeather(Renderer& r, std::shared_ptr<const WeatherSnapshot> snapshot, StageSwap swap)
+{
+    return stageWeather(r, [snapshot = std::move(snapshot)] { return snapshot; }, swap);
+}
+
+void releaseStagedWeather(Renderer& r) { releaseStage(r.weatherStage); }
+
+void cancelStagedWeather(Renderer& r) { cancelStage(r.weatherStage); }
+
+bool weatherStagePending(const Renderer& r) { return stagePending(r.weatherStage); }
 
 void dropHistory(Renderer& r) { r.reprojection.valid = false; }
 
@@ -224,9 +243,7 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
 
     CameraFrame camera = computeCameraFrame(request.pose);
     SunMoon sunMoon = computeSunMoon(request.unixTimeS, camera.eye.latDeg, camera.eye.lonDeg, camera.eye.altitudeM);
-    if (!r.weather)
-        setWeather(r, WeatherSnapshot{});  // no weather given: an empty sky
-    SKY_TRY(updateWeatherWindow(r, camera, quality));
+    SKY_TRY(updateWeatherWindow(r, camera, quality));  // swaps a staged weather in when it is ready
     const WeatherWindow& window = r.window->window;
     const EyeOnWindow eyeOnWindow =
         placeEyeOnWindow(window.centreLatDeg, window.centreLonDeg, camera.eye.latDeg, camera.eye.lonDeg);
@@ -350,6 +367,8 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     result.moonIlluminatedFraction = sunMoon.moonIlluminatedFraction;
     result.exposure = light.exposure;
     result.moonIsKeyLight = moonIsKeyLight(sunMoon);
+    result.weatherVersion = r.weatherVersion;
+    result.weatherValidTimeUnixS = r.weather->validTimeUnixS;
     result.marchBlockPx = quality.reprojected ? r.reprojection.block.blockPx : 1u;
     result.marchBlockReason = quality.reprojected ? r.reprojection.block.reason : "";
     if (request.shadowMap)

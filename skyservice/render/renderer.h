@@ -3,7 +3,8 @@
 //
 // Usage:
 //   Renderer r;  createRenderer(r, options)  -> noise and atmosphere tables are built once
-//   setWeather(r, snapshot)                  -> the weather to draw (copied)
+//   setWeather(r, snapshot)                  -> the weather to draw (copied), from the next frame on
+//   stageWeather(r, snapshot or maker)       -> or: prepared on a worker thread, swapped in when ready
 //   renderView(r, request, settings, result) -> pixels back on the host
 //   (settings.reprojected: consecutive calls reuse the previous frame; dropHistory(r) forgets it)
 //   destroyRenderer(r)
@@ -15,11 +16,14 @@
 #include "skyservice/render/render_types.h"
 #include "skyservice/render/reprojection.h"
 #include "skyservice/render/shadow_map.h"
+#include "skyservice/render/weather_stage.h"
 #include "skyservice/render/window_analysis.h"
 #include "skyservice/render/window_provider.h"
 #include "skyservice/sky/atmosphere_reference.h"
 #include "skyservice/vk/programs.h"
 #include "weather_ingest/weather_snapshot.h"
+
+#include <chrono>
 
 namespace sky
 {
@@ -59,13 +63,17 @@ struct Renderer
     ShadowMapPass shadowPass;
 
     std::shared_ptr<const WeatherSnapshot> weather;  ///< shared with the window worker thread
-    uint64_t weatherVersion = 0;  ///< incremented by setWeather: invalidates the windows made before
+    uint64_t weatherVersion = 0;  ///< of `weather`: a new one per setWeather or staged weather swapped in
+    uint64_t weatherVersionsIssued = 0;  ///< the last version given out (staged weathers get theirs early)
+    WeatherStage weatherStage;    ///< a new weather being prepared on a worker thread (weather_stage.h)
     /// The window on the GPU (centred on the lattice node of the eye, earth/window_lattice.h): frames
     /// whose eye stays in that node's cell, with the same weather and window settings, reuse it.
     std::shared_ptr<const PreparedWindow> window;
     bool windowOnGpu = false;      ///< weatherWindowImage holds `window` (false after a failed upload)
     WindowPrefetch windowPrefetch; ///< the next cell's window, made on a worker thread
     glm::dvec3 lastEyeEcefM{0.0};  ///< eye of the previous frame: its motion says which cell is next
+    std::chrono::steady_clock::time_point lastFrameClock{};  ///< when the previous frame began (real time)
+    double eyeSpeedMps = 0;        ///< estimate of the eye's horizontal speed: it sets the look-ahead
     double atmosphereRadiusM = 0;  ///< bottom radius the transmittance/multiscatter LUTs were built for
     /// The inputs the sky-view LUT was last built from (atmosphere_passes.cpp reuses it when equal).
     SkyViewPushConstants skyViewPush{};
@@ -79,8 +87,25 @@ struct Renderer
 SkyStatus createRenderer(Renderer& r, const RendererOptions& options);
 void destroyRenderer(Renderer& r);
 
-/// Replaces the weather (copied). Takes effect at the next renderView.
+/// Replaces the weather (copied). Takes effect at the next renderView, which makes its window on the
+/// frame path (for one-shot renders and tests). Forgets a staged weather.
 void setWeather(Renderer& r, const WeatherSnapshot& snapshot);
+
+/// Stages a new weather (weather_stage.h): its snapshot is made by `make` (or given), validated and its
+/// window prepared on a worker thread while frames keep drawing the current weather; the first frame
+/// after that (and after releaseStagedWeather with StageSwap::WhenReleased) draws it and drops the
+/// reprojection history. A newer stage replaces one not swapped in yet; a bad weather is dropped (the
+/// current one stays; weatherStage.lastError says why). With no weather drawn yet, the next frame waits
+/// for it. Returns the version the weather will have (RenderResult::weatherVersion).
+uint64_t stageWeather(Renderer& r, WeatherMaker make, StageSwap swap = StageSwap::WhenReady);
+uint64_t stageWeather(Renderer& r, std::shared_ptr<const WeatherSnapshot> snapshot,
+                      StageSwap swap = StageSwap::WhenReady);
+/// Lets a weather staged with StageSwap::WhenReleased swap in at the first frame it is ready for.
+void releaseStagedWeather(Renderer& r);
+/// Forgets the staged weather (a job under way finishes on the worker; its result is dropped).
+void cancelStagedWeather(Renderer& r);
+/// True from stageWeather until the weather swapped in, was refused or cancelled.
+bool weatherStagePending(const Renderer& r);
 
 /// Forgets the reprojection history: the next reprojected frame uses fresh pixels only (teleport,
 /// weather swap, time jump). setWeather does this too; large moves, turns and time jumps do it

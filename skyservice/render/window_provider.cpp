@@ -5,9 +5,42 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace sky
 {
+
+double windowLookAheadM(double speedMps)
+{
+    if (!std::isfinite(speedMps))
+        return kWindowLookAheadMaxM;
+    return std::clamp(speedMps * kWindowLookAheadS, kWindowLookAheadMinM, kWindowLookAheadMaxM);
+}
+
+double updateEyeSpeedMps(double previousMps, double moveM, double dtS)
+{
+    if (!(dtS > 0) || !std::isfinite(moveM))
+        return previousMps;
+    return std::max(moveM / dtS, previousMps * std::exp(-dtS / kEyeSpeedMemoryS));
+}
+
+std::optional<WindowCentre> nextWindowNode(const CameraFrame& camera, glm::dvec2 directionEnu, double lookAheadM)
+{
+    const double length = glm::length(directionEnu);
+    if (!(length > 0))
+        return std::nullopt;
+    const glm::dvec2 unit = directionEnu / length;
+    const WindowCentre here = windowCentreForEye(camera.eye.latDeg, camera.eye.lonDeg);
+    for (double alongM = kNextNodeStepM; alongM <= lookAheadM + 0.5 * kNextNodeStepM; alongM += kNextNodeStepM)
+    {
+        double latDeg = 0, lonDeg = 0, hM = 0;
+        enuToGeodetic(camera, glm::dvec3(unit * std::min(alongM, lookAheadM), 0.0), latDeg, lonDeg, hM);
+        WindowCentre c = windowCentreForEye(latDeg, lonDeg);
+        if (!(c == here))
+            return c;
+    }
+    return std::nullopt;
+}
 
 std::shared_ptr<const PreparedWindow> prepareWindow(const WeatherSnapshot& weather, const WindowKey& key)
 {

@@ -9,6 +9,7 @@
 // not, takeWindow waits for it, so the window used never depends on timing.
 #pragma once
 
+#include "skyservice/earth/geodesy.h"
 #include "skyservice/earth/weather_window.h"
 #include "skyservice/earth/window_lattice.h"
 #include "skyservice/render/window_analysis.h"
@@ -16,14 +17,23 @@
 
 #include <future>
 #include <memory>
+#include <optional>
 
 namespace sky
 {
 
-/// How far ahead along its horizontal motion the eye looks for the next lattice node (m): the next
-/// window starts being made when the eye is this close to its cell's edge, 5 s ahead at 300 m/s, for a
-/// job of 17-85 ms.
-inline constexpr double kWindowLookAheadM = 1500.0;
+/// How far ahead along its horizontal motion the eye looks for the next lattice node: the next window
+/// starts being made when the eye is this close to its cell's edge. At least kWindowLookAheadMinM (5 s
+/// at 300 m/s, for a job of 17-85 ms), and kWindowLookAheadS of motion at the eye's speed: at 3000 m/s
+/// with 4 ms frames a fixed 1500 m (0.5 s) left a frame waiting 214 ms for its window (the job shares
+/// the CPU with the frames). At most kWindowLookAheadMaxM: 1 s at Mach 60, 9 lattice cells, well inside
+/// the window's ~1 km texels (warp radius 150 km); a faster "speed" is a jump, not a flight.
+inline constexpr double kWindowLookAheadMinM = 1500.0;
+inline constexpr double kWindowLookAheadS = 1.5;
+inline constexpr double kWindowLookAheadMaxM = 20000.0;
+/// The eye's speed estimate keeps a peak this long (s, e-folding): a service renders frames between two
+/// set_view requests in which the eye does not move, and those must not make it look slow.
+inline constexpr double kEyeSpeedMemoryS = 2.0;
 
 /// What a window was made from: the same key gives the same texels.
 struct WindowKey
@@ -48,6 +58,22 @@ struct PreparedWindow
     /// filtering rate of RGBA32F; altitudes keep 8 m steps up to 16 km, coverage 1/2048).
     std::vector<uint16_t> gpuTexelsHalf;
 };
+
+/// The look-ahead distance (m) for an eye moving at `speedMps` (m/s): kWindowLookAheadS of motion,
+/// clamped to [kWindowLookAheadMinM, kWindowLookAheadMaxM].
+double windowLookAheadM(double speedMps);
+
+/// The eye's speed (m/s) after a frame that moved it `moveM` (m) in `dtS` (s) of real time: the new
+/// speed, or the previous one decayed over dtS with kEyeSpeedMemoryS when that is larger.
+double updateEyeSpeedMps(double previousMps, double moveM, double dtS);
+
+/// The node the eye reaches next flying straight along `directionEnu` (east, north; any length > 0)
+/// from camera.eye: the first node other than the eye's own along that line (walked in steps of
+/// kNextNodeStepM in the eye's tangent plane), when it is reached within `lookAheadM` (m).
+std::optional<WindowCentre> nextWindowNode(const CameraFrame& camera, glm::dvec2 directionEnu, double lookAheadM);
+/// 25 m: a path that clips a cell's corner for less than this may be missed (that window is then made
+/// on the frame path); 2.2 km cells take at most ~130 steps to leave.
+inline constexpr double kNextNodeStepM = 25.0;
 
 /// Resamples, derives the anvils and summarises (the CPU work of a window).
 std::shared_ptr<const PreparedWindow> prepareWindow(const WeatherSnapshot& weather, const WindowKey& key);

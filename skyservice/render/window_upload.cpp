@@ -8,30 +8,59 @@ namespace sky
 
 SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const QualitySettings& quality)
 {
+    const auto now = std::chrono::steady_clock::now();
     WindowKey key{r.weatherVersion, windowCentreForEye(camera.eye.latDeg, camera.eye.lonDeg),
                   quality.windowHalfExtentM, quality.windowWarpRadiusM};
-    if (!r.window || !(r.window->key == key) || !r.windowOnGpu)
+    // A staged weather whose window for this node is ready replaces the current one from this frame on
+    // (with nothing drawn yet, this frame waits for it: there is no old weather to keep drawing).
+    if (std::optional<StagedResult> staged = advanceStage(r.weatherStage, key, !r.weather))
     {
-        r.windowOnGpu = false;  // stays false if the upload fails
+        r.weather = staged->weather;
+        r.weatherVersion = staged->version;
+        r.window = staged->window;
+        r.windowOnGpu = false;
+        dropHistory(r);  // the previous frame shows other clouds
+        key.weatherVersion = r.weatherVersion;
+    }
+    if (!r.weather)
+    {
+        setWeather(r, WeatherSnapshot{});  // no weather given (or the staged one was refused): an empty sky
+        key.weatherVersion = r.weatherVersion;
+    }
+    if (!r.window || !(r.window->key == key))
+    {
         r.window = takeWindow(r.windowPrefetch, r.weather, key);
+        r.windowOnGpu = false;
+    }
+    if (!r.windowOnGpu)  // stays false if the upload fails: the next frame uploads again
+    {
         const std::vector<uint16_t>& texels = r.window->gpuTexelsHalf;
         SKY_TRY(uploadImage(r.ctx, r.memory, r.weatherWindowImage, texels.data(), texels.size() * sizeof(uint16_t),
                             VK_IMAGE_LAYOUT_GENERAL));
         r.windowOnGpu = true;
     }
-    // The next node: the one under the point kWindowLookAheadM ahead along the eye's horizontal motion.
+    // The next node: the first one along the eye's horizontal motion, prefetched once it is within the
+    // look-ahead (1.5 s of motion at the eye's speed, window_provider.h). The speed comes from real time
+    // between frames; it only says when a window is made, never what is drawn.
     glm::dvec3 moveEnu = glm::transpose(camera.enuToEcef) * (camera.eyeEcefM - r.lastEyeEcefM);
+    const bool hadFrame = r.lastFrameClock != std::chrono::steady_clock::time_point{};
+    const double dtS = std::chrono::duration<double>(now - r.lastFrameClock).count();
     r.lastEyeEcefM = camera.eyeEcefM;
+    r.lastFrameClock = now;
     double moveM = glm::length(glm::dvec2(moveEnu));
-    if (moveM > 1e-3 && moveM < kReprojectionMaxMoveM)
+    if (!hadFrame || moveM >= kReprojectionMaxMoveM)
+        r.eyeSpeedMps = 0;  // a jump, not a flight
+    else
+        r.eyeSpeedMps = updateEyeSpeedMps(r.eyeSpeedMps, moveM, dtS);
+    if (hadFrame && moveM > 1e-3 && moveM < kReprojectionMaxMoveM)
     {
-        glm::dvec2 ahead = glm::dvec2(moveEnu) / moveM * kWindowLookAheadM;
-        double latDeg = 0, lonDeg = 0, hM = 0;
-        enuToGeodetic(camera, glm::dvec3(ahead, 0.0), latDeg, lonDeg, hM);
-        WindowKey next = key;
-        next.centre = windowCentreForEye(latDeg, lonDeg);
-        if (!(next == key))
-            prefetchWindow(r.windowPrefetch, r.weather, next);
+        if (std::optional<WindowCentre> next =
+                nextWindowNode(camera, glm::dvec2(moveEnu), windowLookAheadM(r.eyeSpeedMps)))
+        {
+            WindowKey nextKey = key;
+            nextKey.centre = *next;
+            prefetchWindow(r.windowPrefetch, r.weather, nextKey);
+        }
     }
     return SkyStatus::success();
 }

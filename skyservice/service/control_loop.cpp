@@ -221,6 +221,8 @@ void ControlLoop::setTime(ClientId client, const Request& request)
         double base = request.timeIso ? double(unixTimeS) : s.clock.nowUnixS(now);
         s.clock.baseUnixS = base;
         s.clock.baseReal = now;
+        if (request.timeIso)
+            ++s.clock.jumps;
         if (request.rate)
             s.clock.rate = *request.rate;
     }
@@ -276,6 +278,13 @@ nlohmann::json ControlLoop::statusJson()
     }
     if (!s.weather.lastError.empty())
         weather["last_error"] = s.weather.lastError;
+    weather["version"] = s.weather.version;
+    weather["frame"] = nullptr;
+    if (s.frameWeather.known)
+        weather["frame"] = {{"version", s.frameWeather.version},
+                            {"source", s.frameWeather.source},
+                            {"valid_time", formatIso8601Utc(s.frameWeather.validTimeUnixS)}};
+    weather["pending"] = s.weatherPending;
     double uptime = std::chrono::duration<double>(SteadyClock::now() - c_.startedAt).count();
     double simNow = s.clock.nowUnixS();
     return {{"type", "status"},
@@ -294,6 +303,7 @@ nlohmann::json ControlLoop::statusJson()
             {"rate", s.clock.rate},
             {"render_rate_hz", s.renderRateHz},
             {"weather", weather},
+            {"windows", {{"made_on_frame_path", s.windowsMadeOnFramePath}, {"from_worker", s.windowsFromWorker}}},
             {"last_render_error", s.lastRenderError.empty() ? nlohmann::json() : nlohmann::json(s.lastRenderError)},
             {"clients", c_.server->clientCount()},
             {"uptime_s", uptime}};

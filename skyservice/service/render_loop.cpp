@@ -5,7 +5,7 @@
 #include "skyservice/ipc/protocol.h"
 #include "skyservice/service/log.h"
 #include "skyservice/service/vulkan_export.h"
-#include "skyservice/sky/builtin_weather.h"
+#include "skyservice/service/weather_schedule.h"
 #include "skyservice/sky/ephemeris.h"
 
 #include <algorithm>
@@ -18,11 +18,6 @@ namespace sky
 {
 namespace
 {
-
-/// A weather snapshot is resampled when the simulated time moved this far from the last sample (s):
-/// cloud fields change on the scale of the model's hourly steps, so a minute is invisible, and a frozen
-/// clock samples exactly once (the frame then matches a one-shot `skyservice render` bit for bit).
-constexpr double kWeatherResampleS = 60;
 
 double lonToRange(double lonDeg)
 {
@@ -85,9 +80,7 @@ struct RenderLoop::Impl
     RenderResult result;
     ViewRequest lastRequest;
     bool haveFrame = false;
-    std::string lastWeatherSource = "builtin";
-    uint64_t appliedWeatherVersion = 0;
-    double weatherSampledAtS = 0;
+    WeatherSchedule weatherSchedule;
     VulkanExport exporter;
     std::string lastLoggedError;
     /// write_files requests that came while the frames had no linear frame (no EXR subscription): they
@@ -95,8 +88,9 @@ struct RenderLoop::Impl
     std::vector<RenderJob> pendingWriteFiles;
 
     void run();
-    void renderFrame(uint64_t id, ViewRequest request, double simTimeS, const WeatherState& weather,
-                     const QualitySettings& quality, const std::vector<FilesSubscription>& files);
+    void renderFrame(uint64_t id, ViewRequest request, const SimClock& clock, double simTimeS,
+                     const WeatherState& weather, const QualitySettings& quality,
+                     const std::vector<FilesSubscription>& files);
     void doJob(const RenderJob& job);
     bool writeFiles(const std::string& prefix, const std::string& format, std::string& error);
     void reply(ClientId client, std::string line, std::vector<int> fds = {})
@@ -165,7 +159,8 @@ void RenderLoop::Impl::run()
         uint64_t id = ++s.framesStarted;
         ViewRequest request = s.view;
         SteadyClock::time_point now = SteadyClock::now();
-        double simTimeS = s.clock.nowUnixS(now);
+        SimClock clock = s.clock;
+        double simTimeS = clock.nowUnixS(now);
         WeatherState weather = s.weather;
         QualitySettings quality = s.quality;
         std::vector<FilesSubscription> files = s.files;
@@ -176,27 +171,18 @@ void RenderLoop::Impl::run()
             nextDue = std::max(nextDue + period, now);
         }
         lock.unlock();
-        renderFrame(id, request, simTimeS, weather, quality, files);
+        renderFrame(id, request, clock, simTimeS, weather, quality, files);
     }
 }
 
-void RenderLoop::Impl::renderFrame(uint64_t id, ViewRequest request, double simTimeS, const WeatherState& weather,
-                                   const QualitySettings& quality, const std::vector<FilesSubscription>& files)
+void RenderLoop::Impl::renderFrame(uint64_t id, ViewRequest request, const SimClock& clock, double simTimeS,
+                                   const WeatherState& weather, const QualitySettings& quality,
+                                   const std::vector<FilesSubscription>& files)
 {
     Renderer& r = *setup.renderer;
     auto start = SteadyClock::now();
     request.unixTimeS = int64_t(std::floor(simTimeS));
-    if (weather.version != appliedWeatherVersion || std::abs(simTimeS - weatherSampledAtS) > kWeatherResampleS)
-    {
-        // Sampled as `skyservice render --weather` does (weather_source.cpp), at the frame's whole second.
-        if (weather.timeline)
-            setWeather(r, weather.timeline->sample(double(request.unixTimeS)));
-        else
-            setWeather(r, makeBuiltinWeather(request.unixTimeS));
-        appliedWeatherVersion = weather.version;
-        weatherSampledAtS = simTimeS;
-        lastWeatherSource = weather.source;
-    }
+    weatherSchedule.beforeFrame(r, weather, clock, simTimeS);  // a new weather is prepared off this thread
     // The linear frame (16.6 MB at 1080p) only for EXR files: a files subscription that writes them, or a
     // write_files request waiting for this frame.
     QualitySettings frameQuality = quality;
@@ -204,6 +190,7 @@ void RenderLoop::Impl::renderFrame(uint64_t id, ViewRequest request, double simT
                                 std::any_of(files.begin(), files.end(),
                                             [](const FilesSubscription& f) { return f.format != "png"; });
     SkyStatus status = renderView(r, request, frameQuality, result);
+    weatherSchedule.afterFrame(r);
     double ms = std::chrono::duration<double, std::milli>(SteadyClock::now() - start).count();
     std::string error;
     if (status.ok())
@@ -273,7 +260,12 @@ void RenderLoop::Impl::renderFrame(uint64_t id, ViewRequest request, double simT
         s.lastFrameId = id;
         ++s.framesRendered;
         s.recordFrameMs(ms);
+        const DrawnWeather& drawn = weatherSchedule.drawn();
+        s.frameWeather = FrameWeather{drawn.serviceVersion, drawn.source, result.weatherValidTimeUnixS, true};
     }
+    s.weatherPending = weatherSchedule.pending();
+    s.windowsMadeOnFramePath = r.windowPrefetch.madeOnFrame;
+    s.windowsFromWorker = r.windowPrefetch.used + r.weatherStage.swapped;
     s.lastRenderError = error;
     s.deviceMemoryBytes = memory;
     SKY_LOG_DEBUG("frame %llu: %.1f ms", (unsigned long long)id, ms);
@@ -282,7 +274,8 @@ void RenderLoop::Impl::renderFrame(uint64_t id, ViewRequest request, double simT
 bool RenderLoop::Impl::writeFiles(const std::string& prefix, const std::string& format, std::string& error)
 {
     RenderFacts facts;
-    facts.weatherSource = lastWeatherSource;
+    facts.weatherSource = weatherSchedule.drawn().source;  // afterFrame: the weather `result` drew
+    facts.weatherVersion = weatherSchedule.drawn().serviceVersion;
     facts.timeIso = formatIso8601Utc(lastRequest.unixTimeS);
     facts.deviceName = setup.renderer->ctx.deviceName;
     facts.driver = setup.renderer->ctx.driverInfo;

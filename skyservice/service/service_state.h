@@ -31,6 +31,7 @@ struct SimClock
     double baseUnixS = 0;
     SteadyClock::time_point baseReal = SteadyClock::now();
     double rate = 0;
+    uint64_t jumps = 0;  ///< +1 per set_time with a time: the next frame draws the weather of its time at once
 
     double nowUnixS(SteadyClock::time_point now = SteadyClock::now()) const
     {
@@ -45,6 +46,15 @@ struct WeatherState
     std::string source = "builtin";  ///< "builtin" or the file
     uint64_t version = 1;            ///< +1 per swap
     std::string lastError;           ///< the last refused file and why ("" after a good load)
+};
+
+/// The weather a published frame drew (status `weather.frame`): which load, sampled at which time.
+struct FrameWeather
+{
+    uint64_t version = 0;            ///< WeatherState::version
+    std::string source;
+    int64_t validTimeUnixS = 0;      ///< valid time of the snapshot drawn (the sample time)
+    bool known = false;              ///< false until a frame was published
 };
 
 /// `subscribe` with transport files: every N frames into dir.
@@ -102,6 +112,10 @@ struct ServiceState
     uint64_t deviceMemoryBytes = 0;
     std::string lastRenderError;
     std::deque<PendingReply> replies;
+    FrameWeather frameWeather;      ///< the weather of the last published frame
+    bool weatherPending = false;    ///< a new weather (load or re-sample) is being prepared off the frame path
+    uint64_t windowsMadeOnFramePath = 0;  ///< weather windows a frame had to make itself (a hitch each)
+    uint64_t windowsFromWorker = 0;       ///< ... and those it took ready-made from the worker thread
 
     static constexpr size_t kFrameHistory = 128;
 

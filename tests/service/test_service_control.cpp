@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sys/stat.h>
 #include <thread>
 
@@ -58,8 +59,47 @@ TEST(ServiceControl, LoadWeatherBadThenGood)
     ASSERT_TRUE(waitForStatus(c, [&](const json& j) { return j["weather"]["source"] == good; }, 10000, &s)) << s;
     EXPECT_EQ(s["weather"]["valid_time"], "2026-06-21T06:00:00Z");
     EXPECT_TRUE(s["weather"]["last_error"].is_null());
+    // The frames draw it once its window is ready (made on the worker thread, not by a frame).
+    ASSERT_TRUE(waitForStatus(
+        c, [&](const json& j) { return j["weather"]["frame"].is_object() && j["weather"]["frame"]["source"] == good; },
+        10000, &s))
+        << s;
+    EXPECT_EQ(s["weather"]["frame"]["version"], s["weather"]["version"]) << s;
+    EXPECT_EQ(s["windows"]["made_on_frame_path"], 1) << "only the first frame makes its window: " << s;
+    EXPECT_GE(s["windows"]["from_worker"], 1) << s;
     uint64_t frame = s["frame_id"];
     ASSERT_TRUE(waitForStatus(c, [&](const json& j) { return j["frame_id"].get<uint64_t>() > frame + 3; }, 10000, &s));
+    EXPECT_EQ(d.stop(), 0);
+}
+
+// With the clock running (rate 120: a re-sample every 0.5 s of real time) the weather is re-sampled
+// every 60 s of simulated time, each sample prepared ahead on the worker thread: the frames draw a new
+// valid time every time, and no frame makes a window itself after the first.
+TEST(ServiceControl, RunningClockResamplesOffTheFramePath)
+{
+    TempDir tmp;
+    Daemon d;
+    std::string error;
+    ASSERT_TRUE(d.start(tmp.path, tinyFrames(20), error)) << error;
+    RawClient c;
+    ASSERT_TRUE(c.open(d.socketPath));
+    json s;
+    ASSERT_TRUE(waitForStatus(c, [](const json& j) { return j["weather"]["frame"].is_object(); }, 10000, &s)) << s;
+    ASSERT_EQ(s["windows"]["made_on_frame_path"], 1) << s;
+    json r = c.request({{"type", "set_time"}, {"rate", 120}});  // no time given: no jump, the clock runs on
+    ASSERT_EQ(r.value("type", ""), "ok") << r;
+    std::set<std::string> validTimes{s["weather"]["frame"]["valid_time"].get<std::string>()};
+    ASSERT_TRUE(waitForStatus(
+        c,
+        [&](const json& j) {
+            validTimes.insert(j["weather"]["frame"]["valid_time"].get<std::string>());
+            return validTimes.size() >= 4;
+        },
+        30000, &s))
+        << s;
+    EXPECT_EQ(s["windows"]["made_on_frame_path"], 1) << "a re-sample made its window on the frame path: " << s;
+    EXPECT_GE(s["windows"]["from_worker"], 3) << s;
+    EXPECT_LE(s["weather"]["frame"]["valid_time"].get<std::string>(), s["time"].get<std::string>()) << s;
     EXPECT_EQ(d.stop(), 0);
 }
 

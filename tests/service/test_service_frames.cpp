@@ -9,7 +9,9 @@
 
 #include <atomic>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -96,6 +98,76 @@ TEST(ServiceFrames, MatchesOneShotRender)
         maxDiff = std::max(maxDiff, diff);
     }
     EXPECT_EQ(differing, 0u) << "largest difference " << maxDiff << " of 255";
+    EXPECT_EQ(d.stop(), 0);
+}
+
+// A weather loaded while the service runs is drawn from a frame on that depends on when its window was
+// ready (status weather.frame says which); that frame is byte for byte what `skyservice render --weather`
+// writes for the same view, time and file. The frames before it drew the old weather.
+TEST(ServiceFrames, LoadedWeatherFrameMatchesOneShotRender)
+{
+    TempDir tmp;
+    Daemon d;
+    std::string error;
+    ASSERT_TRUE(d.start(tmp.path, DaemonConfig{}, error)) << error;
+    const std::string wx = tmp.path + "/later.skywx";
+    ASSERT_TRUE(writeBuiltinSnapshot(wx, 1782043200 + 3600 * 2, error)) << error;  // 14:00, drawn at 16:00
+
+    SkyClient* c = nullptr;
+    ASSERT_EQ(sky_client_connect(d.socketPath.c_str(), "load", &c), SKY_OK);
+    SkyView v = testView();
+    ASSERT_EQ(sky_client_set_view(c, &v), SKY_OK) << sky_client_last_error(c);
+    ASSERT_EQ(sky_client_set_time(c, 1782043200.0 + 3600.0 * 4, 0.0), SKY_OK);  // 2026-06-21T16:00:00Z
+    ASSERT_EQ(sky_client_subscribe_shm(c), SKY_OK) << sky_client_last_error(c);
+    uint64_t id = 0;
+    ASSERT_EQ(sky_client_request_frame(c, &id), SKY_OK);  // the built-in weather, drawn synchronously
+    ASSERT_EQ(sky_client_wait_frame(c, id - 1, 30000), SKY_OK) << sky_client_last_error(c);
+
+    RawClient raw;
+    ASSERT_TRUE(raw.open(d.socketPath));
+    nlohmann::json s = raw.request({{"type", "load_weather"}, {"path", wx}});
+    ASSERT_EQ(s.value("type", ""), "ok") << s;
+    ASSERT_TRUE(waitForStatus(raw, [&](const nlohmann::json& j) { return j["weather"]["source"] == wx; }, 10000, &s))
+        << s;
+    // Frames on request (render_rate_hz 0) until one draws the file: the last frame published is it.
+    int frames = 0;
+    for (; frames < 200; ++frames)
+    {
+        ASSERT_EQ(sky_client_request_frame(c, &id), SKY_OK);
+        ASSERT_EQ(sky_client_wait_frame(c, id - 1, 30000), SKY_OK) << sky_client_last_error(c);
+        s = raw.request({{"type", "status"}});
+        if (s["frame_id"] == id && s["weather"]["frame"]["source"] == wx)
+            break;
+    }
+    ASSERT_LT(frames, 200) << s;
+    EXPECT_EQ(s["weather"]["frame"]["valid_time"], "2026-06-21T16:00:00Z") << s;  // sampled at the frame's time
+    SkyFrame f{};
+    ASSERT_EQ(sky_client_acquire_frame(c, &f), SKY_OK);
+    ASSERT_EQ(f.frame_id, id);
+    std::vector<uint8_t> pixels;
+    for (uint32_t y = 0; y < f.height; ++y)
+        pixels.insert(pixels.end(), f.pixels + size_t(y) * f.row_bytes, f.pixels + size_t(y) * f.row_bytes + f.width * 4);
+    ASSERT_EQ(sky_client_release_frame(c, &f), SKY_OK);
+    sky_client_close(c);
+
+    std::string cmd = serviceBinary() + " render --quality test --lat 46 --lon 8 --alt 2500 --heading 200 --pitch 5"
+                      " --fov 60 --width 64 --height 36 --time 2026-06-21T16:00:00Z --weather " + wx + " --out " +
+                      tmp.path + "/ref > " + tmp.path + "/ref.log 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    sky::ImageRgba8 ref;
+    ASSERT_TRUE(sky::readPng(tmp.path + "/ref.png", ref, error)) << error;
+    EXPECT_TRUE(ref.pixels == pixels) << "the first frame that draws the loaded weather differs from the one-shot render";
+    // The sidecars say which weather was drawn: the service's of that frame, and the one-shot's.
+    s = raw.request({{"type", "write_files"}, {"prefix", tmp.path + "/svc"}}, 20000);
+    ASSERT_EQ(s.value("type", ""), "ok") << s;
+    for (const std::string& json : {tmp.path + "/svc.json", tmp.path + "/ref.json"})
+    {
+        std::ifstream in(json);
+        nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+        EXPECT_EQ(j["weather"], wx) << json;
+        EXPECT_EQ(j["weatherValidTime"], "2026-06-21T16:00:00Z") << json;
+    }
+    std::printf("the loaded weather was drawn from the %d. frame after the load on\n", frames + 1);
     EXPECT_EQ(d.stop(), 0);
 }
 

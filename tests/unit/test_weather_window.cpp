@@ -283,3 +283,15 @@ TEST(WeatherWindow, FullSizeWindowOfBuiltinWeather)
 }
 
 }  // namespace
+
+// A snapshot with no grid at all (what the renderer draws when it was given no weather) resamples to a
+// clear window, reading no field (it once read cells of the empty vectors).
+TEST(WeatherWindow, AnEmptySnapshotGivesAClearWindow)
+{
+    WeatherWindow w;
+    sky::resampleWeatherWindow(WeatherSnapshot{}, 46.0, 8.0, 50000.0, w, 16);
+    ASSERT_EQ(w.texels.size(), size_t(WEATHER_WINDOW_SLICES) * 16 * 16);
+    for (uint32_t j = 0; j < 16; ++j)
+        for (uint32_t i = 0; i < 16; ++i)
+            EXPECT_EQ(w.at(0, j, i).x, 0.0f) << i << " " << j;  // layer 0 coverage
+}

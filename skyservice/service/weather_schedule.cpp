@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: MIT
+#include "skyservice/service/weather_schedule.h"
+
+#include "skyservice/service/log.h"
+#include "skyservice/sky/builtin_weather.h"
+#include "skyservice/sky/ephemeris.h"
+
+#include <cmath>
+
+namespace sky
+{
+namespace
+{
+
+/// The weather at a whole second, as `skyservice render --weather` samples it (weather_source.cpp). Runs
+/// on the renderer's worker thread: the timeline is shared read-only (the service never changes a
+/// loaded one, it replaces the pointer), the built-in scene is a pure function of the time.
+WeatherMaker sampler(std::shared_ptr<const WeatherTimeline> timeline, int64_t atUnixS)
+{
+    return [timeline = std::move(timeline), atUnixS] {
+        return std::make_shared<const WeatherSnapshot>(timeline && !timeline->empty() ? timeline->sample(double(atUnixS))
+                                                                                      : makeBuiltinWeather(atUnixS));
+    };
+}
+
+}  // namespace
+
+void WeatherSchedule::stage(Renderer& r, const WeatherState& weather, int64_t sampleAtUnixS, int direction)
+{
+    Staged s;
+    s.weather = DrawnWeather{weather.version, weather.source, sampleAtUnixS};
+    s.direction = direction;
+    s.held = direction != 0;
+    s.rendererVersion = stageWeather(r, sampler(weather.timeline, sampleAtUnixS),
+                                     s.held ? StageSwap::WhenReleased : StageSwap::WhenReady);
+    staged_ = s;
+    lastServiceVersion_ = weather.version;
+}
+
+void WeatherSchedule::beforeFrame(Renderer& r, const WeatherState& weather, const SimClock& clock, double simTimeS)
+{
+    const int64_t second = int64_t(std::floor(simTimeS));
+    if (!started_ || clock.jumps != clockJumpsSeen_)
+    {
+        // Nothing to keep drawing yet, or a jump in time: this frame draws the weather of its time.
+        setWeather(r, *sampler(weather.timeline, second)());
+        drawn_ = DrawnWeather{weather.version, weather.source, second};
+        staged_.reset();
+        lastServiceVersion_ = weather.version;
+        clockJumpsSeen_ = clock.jumps;
+        started_ = true;
+        return;
+    }
+    if (weather.version != lastServiceVersion_)
+    {
+        stage(r, weather, second, 0);  // a newly loaded weather (replaces a staged re-sample)
+        return;
+    }
+    const int direction = clock.rate > 0 ? 1 : clock.rate < 0 ? -1 : 0;
+    if (staged_ && staged_->direction != 0 && staged_->direction != direction)
+    {
+        cancelStagedWeather(r);  // a re-sample for a clock that has stopped or turned since
+        staged_.reset();
+    }
+    if (direction != 0 && !staged_)
+    {
+        const int64_t next = drawn_.sampledAtUnixS + direction * int64_t(kWeatherResampleS);
+        if (double(next - second) * direction < 0)
+            stage(r, weather, second, 0);  // the clock outran the samples: this second's, swapped when ready
+        else
+            stage(r, weather, next, direction);  // ahead of time, released when the clock gets there
+    }
+    if (staged_ && staged_->held && (simTimeS - double(staged_->weather.sampledAtUnixS)) * direction >= 0)
+    {
+        releaseStagedWeather(r);
+        staged_->held = false;
+    }
+}
+
+void WeatherSchedule::afterFrame(const Renderer& r)
+{
+    if (!staged_)
+        return;
+    if (r.weatherVersion == staged_->rendererVersion)
+    {
+        drawn_ = staged_->weather;
+        staged_.reset();
+        SKY_LOG_DEBUG("weather %s sampled at %s drawn from this frame on", drawn_.source.c_str(),
+                      formatIso8601Utc(drawn_.sampledAtUnixS).c_str());
+    }
+    else if (!weatherStagePending(r))
+    {
+        SKY_LOG_ERROR("weather %s at %s: %s (keeping %s)", staged_->weather.source.c_str(),
+                      formatIso8601Utc(staged_->weather.sampledAtUnixS).c_str(), r.weatherStage.lastError.c_str(),
+                      drawn_.source.c_str());
+        staged_.reset();
+    }
+}
+
+}  // namespace sky
