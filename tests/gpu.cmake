@@ -13,3 +13,7 @@ gtest_discover_tests(test_param_blocks TEST_PREFIX "gpu." DISCOVERY_TIMEOUT 60 P
 add_executable(test_memory gpu/test_memory.cpp gpu/scenes.cpp)
 target_link_libraries(test_memory PRIVATE sky_renderer GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_memory TEST_PREFIX "gpu." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+
+add_executable(test_aerial_lut gpu/test_aerial_lut.cpp gpu/scenes.cpp)
+target_link_libraries(test_aerial_lut PRIVATE sky_renderer GTest::gtest_main sky_warnings)
+gtest_discover_tests(test_aerial_lut TEST_PREFIX "gpu." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)

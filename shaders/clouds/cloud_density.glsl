@@ -4,9 +4,6 @@
 
 // Vertical stretch of the base noise: 1 = isotropic, 0.35 = features ~3 times taller than wide.
 const float BASE_NOISE_VERTICAL_SCALE = 0.35f;
-// Detail erosion fades out with distance: beyond this the detail noise is finer than a pixel.
-const float kDetailFadeStartM = 8000.0f;
-const float kDetailFadeEndM = 25000.0f;
 // Extinction relative to cloudLook.x per genus: stratiform decks are optically thinner per metre.
 float genusDensityScale(int cloudType)
 {
@@ -70,7 +67,8 @@ float baseShapeAt(vec3 noisePos)
 
 float erodeAt(float density, vec3 noisePos, float hf, float distanceM)
 {
-    float fade = 1.0f - smoothstep(kDetailFadeStartM, kDetailFadeEndM, distanceM);
+    // Detail erosion fades out with distance (frame.marchLod.xy): far away its noise is finer than a pixel.
+    float fade = 1.0f - smoothstep(frame.marchLod.x, frame.marchLod.y, distanceM);
     if (fade <= 0.0f || (frame.image.w & FRAME_FLAG_NO_DETAIL) != 0u)
         return density;
     // Curl-distorted coordinates, strongest at the base where clouds look torn by turbulence.

@@ -30,20 +30,21 @@ vec3 keyLightAt(vec3 p, vec3 lightDir)
 }
 
 // Optical depth toward the light: 6 samples in a widening cone, then one long sample at 3x the cone
-// length (Schneider 2015); cheap density once the path is already dense. Beyond frame.march.z metres
-// (the light LOD distance; 0: never) 3 cheap samples cover the same cone: there a pixel spans tens of
-// metres and the detail erosion fades out (cloud_density.glsl), and the view samples are far apart.
+// length (Schneider 2015); cheap density once the path is already dense, and beyond the first
+// frame.marchLod.w samples. Beyond frame.marchLod.z metres (0: never) 3 cheap samples cover the same
+// cone: there a pixel spans tens of metres and the view samples are far apart.
 float lightOpticalDepth(vec3 p, vec3 lightDir, float distanceM)
 {
     float stepM = frame.phaseTerms.w;
     uint samples = min(frame.march.y, 6u);
-    bool coarse = frame.march.z > 0u && distanceM > float(frame.march.z);
+    bool coarse = frame.marchLod.z > 0.0f && distanceM > frame.marchLod.z;
     if (coarse && samples > 3u)
     {
         // Steps i = 1..n of stepM * i cover stepM * n(n+1)/2: the same length with 3 samples.
         stepM *= float(samples * (samples + 1u)) / 12.0f;
         samples = 3u;
     }
+    uint fullSamples = coarse ? 0u : uint(frame.marchLod.w);
     float depth = 0.0f;
     float t = 0.0f;
     for (uint i = 0u; i < samples; ++i)
@@ -51,7 +52,7 @@ float lightOpticalDepth(vec3 p, vec3 lightDir, float distanceM)
         float len = stepM * float(i + 1u);
         t += len;
         vec3 q = p + lightDir * (t - 0.5f * len) + kConeKernel[i] * (0.25f * t);
-        bool cheap = coarse || depth * frame.cloudLook.x > 0.3f;
+        bool cheap = i >= fullSamples || depth * frame.cloudLook.x > 0.3f;
         depth += cloudDensity(q, cheap, distanceM).density * len;
     }
     vec3 far = p + lightDir * (3.0f * t);

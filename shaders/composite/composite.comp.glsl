@@ -27,9 +27,13 @@ layout(binding = 7, rgba16ui) uniform readonly uimage2D historyIn;  // 1x1 stand
 // The linear frame only when a caller reads it (FRAME_FLAG_NO_LINEAR_OUTPUT clear): 16.6 MB at 1080p.
 layout(binding = 8, rgba16f) uniform writeonly image2D linearOut;
 layout(binding = 9, rgba8) uniform writeonly image2D displayOut;
+// The aerial-perspective LUT of this frame (in-scattered light, transmittance).
+layout(binding = 10) uniform sampler3D aerialInscatterLut;
+layout(binding = 11) uniform sampler3D aerialTransmittanceLut;
 
 #include "shaders/lib/atmosphere_sampling.glsl"
 #include "shaders/clouds/view_ray.glsl"
+#include "shaders/lib/aerial_lut.glsl"
 
 void main()
 {
@@ -70,9 +74,8 @@ void main()
     {
         vec3 inscatter;
         vec3 transmittance;
-        aerialPerspective(transmittanceLut, multiscatterLut, atmosphere, vec3(0.0f, 0.0f, rc), dir, depth,
-                          frame.sunDirection.xyz, frame.sunIrradiance.rgb, frame.moonDirection.xyz,
-                          frame.moonIrradiance.rgb, inscatter, transmittance);
+        sampleAerialLut(aerialInscatterLut, aerialTransmittanceLut, atmosphere, dir, rc, depth, inscatter,
+                        transmittance);
         color = sky * (1.0f - cloud.a) + cloud.rgb * transmittance + inscatter * cloud.a;
     }
     if ((frame.image.w & FRAME_FLAG_NO_LINEAR_OUTPUT) == 0u)

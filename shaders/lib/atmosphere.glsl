@@ -226,42 +226,60 @@ float skyViewHorizonZenith(IN(AtmosphereParams) p, float r)
     return SKY_PI - acos(clamp(cosBeta, 0.0f, 1.0f));
 }
 
-vec2 skyViewLutUv(IN(AtmosphereParams) p, float r, float viewZenithRad, float azimuthRad)
+// The mapping's v in [0, 1] (before the texel-centre mapping) of a view zenith angle seen from r, and back.
+float skyViewUnitV(IN(AtmosphereParams) p, float r, float viewZenithRad)
 {
     float zenithHorizon = skyViewHorizonZenith(p, r);
     float beta = SKY_PI - zenithHorizon;
-    float v;
     if (viewZenithRad < zenithHorizon)
     {
         float coord = clamp(viewZenithRad / zenithHorizon, 0.0f, 1.0f);
-        v = 0.5f * (1.0f - sqrt(1.0f - coord));
+        return 0.5f * (1.0f - sqrt(1.0f - coord));
     }
-    else
+    float coord = beta > 0.0f ? clamp((viewZenithRad - zenithHorizon) / beta, 0.0f, 1.0f) : 0.0f;
+    return 0.5f + 0.5f * sqrt(coord);
+}
+
+float skyViewZenithOfUnitV(IN(AtmosphereParams) p, float r, float v)
+{
+    float zenithHorizon = skyViewHorizonZenith(p, r);
+    float beta = SKY_PI - zenithHorizon;
+    if (v < 0.5f)
     {
-        float coord = beta > 0.0f ? clamp((viewZenithRad - zenithHorizon) / beta, 0.0f, 1.0f) : 0.0f;
-        v = 0.5f + 0.5f * sqrt(coord);
+        float coord = 1.0f - 2.0f * v;
+        return zenithHorizon * (1.0f - coord * coord);
     }
+    float coord = 2.0f * v - 1.0f;
+    return zenithHorizon + beta * coord * coord;
+}
+
+vec2 skyViewLutUv(IN(AtmosphereParams) p, float r, float viewZenithRad, float azimuthRad)
+{
     float u = fract(azimuthRad / (2.0f * SKY_PI));
-    return vec2(u, unitRangeToTexCoord(v, float(SKY_VIEW_LUT_HEIGHT)));
+    return vec2(u, unitRangeToTexCoord(skyViewUnitV(p, r, viewZenithRad), float(SKY_VIEW_LUT_HEIGHT)));
 }
 
 void skyViewLutDirection(IN(AtmosphereParams) p, float r, vec2 uv, OUT(float) viewZenithRad,
                          OUT(float) azimuthRad)
 {
-    float zenithHorizon = skyViewHorizonZenith(p, r);
-    float beta = SKY_PI - zenithHorizon;
     float v = clamp(texCoordToUnitRange(uv.y, float(SKY_VIEW_LUT_HEIGHT)), 0.0f, 1.0f);
-    if (v < 0.5f)
-    {
-        float coord = 1.0f - 2.0f * v;
-        viewZenithRad = zenithHorizon * (1.0f - coord * coord);
-    }
-    else
-    {
-        float coord = 2.0f * v - 1.0f;
-        viewZenithRad = zenithHorizon + beta * coord * coord;
-    }
+    viewZenithRad = skyViewZenithOfUnitV(p, r, v);
     azimuthRad = uv.x * 2.0f * SKY_PI;
+}
+
+// Aerial-perspective LUT (atmosphere_params.h): slice k holds the air between the eye and the distance
+// d_k = AERIAL_LUT_MAX_DISTANCE_M ((k + 1) / AERIAL_LUT_SLICES)^2 (slices crowd near the eye, where
+// haze changes fastest with distance). aerialSliceOfDistance is the continuous slice index of a
+// distance: -1 at the eye, k at d_k.
+float aerialSliceDistanceM(float k)
+{
+    float s = (k + 1.0f) / float(AERIAL_LUT_SLICES);
+    return AERIAL_LUT_MAX_DISTANCE_M * s * s;
+}
+
+float aerialSliceOfDistance(float distanceM)
+{
+    return sqrt(max(distanceM, 0.0f) / AERIAL_LUT_MAX_DISTANCE_M) * float(AERIAL_LUT_SLICES) - 1.0f;
 }
 
 // Unit ENU vector from a zenith angle and an azimuth clockwise from north.

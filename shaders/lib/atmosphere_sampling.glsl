@@ -78,6 +78,57 @@ bool clipRayToAtmosphere(IN(AtmosphereParams) p, vec3 originM, vec3 dirEnu, OUT(
 // over [0, tMaxM] (clipped to the atmosphere), in `steps` steps packed towards the origin
 // (t ~ (i / steps)^2). inscatter is the radiance scattered towards the origin, transmittance the
 // transmittance from the origin to the end of the segment.
+// Phase functions of a view direction for the sun and the moon (constant along the ray).
+struct ViewPhases
+{
+    float rayleighSun;
+    float mieSun;
+    float rayleighMoon;
+    float mieMoon;
+};
+
+ViewPhases viewPhases(IN(AtmosphereParams) p, vec3 dirEnu, vec3 sunDirEnu, vec3 moonDirEnu)
+{
+    ViewPhases v;
+    float nuSun = dot(dirEnu, sunDirEnu);
+    float nuMoon = dot(dirEnu, moonDirEnu);
+    float g = p.mieExtinction.w;
+    v.rayleighSun = rayleighPhase(nuSun);
+    v.rayleighMoon = rayleighPhase(nuMoon);
+    v.mieSun = miePhaseCornetteShanks(g, nuSun);
+    v.mieMoon = miePhaseCornetteShanks(g, nuMoon);
+    return v;
+}
+
+// One step of length dt whose middle is at pos (m from the earth's centre): adds the light scattered
+// toward the eye (single scattering of the sun and the moon plus the multiple-scattering LUT) seen
+// through `transmittance`, then attenuates `transmittance` over the step (Hillaire 2015: source * T
+// integrated analytically over the step).
+void scatteringStep(sampler2D transmittanceLut, sampler2D multiscatterLut, IN(AtmosphereParams) p, vec3 pos, float dt,
+                    ViewPhases ph, vec3 sunDirEnu, vec3 sunIrradiance, vec3 moonDirEnu, vec3 moonIrradiance,
+                    INOUT(vec3) inscatter, INOUT(vec3) transmittance)
+{
+    float r = length(pos);
+    float altitude = r - p.radii.x;
+    float muSun = dot(pos, sunDirEnu) / r;
+    float muMoon = dot(pos, moonDirEnu) / r;
+
+    vec3 rayleigh = rayleighScatteringAt(p, altitude);
+    vec3 mie = mieScatteringAt(p, altitude);
+    vec3 extinction = extinctionAt(p, altitude);
+    vec3 sunLight = transmittanceToLight(transmittanceLut, p, r, muSun, p.radii.z);
+    vec3 moonLight = transmittanceToLight(transmittanceLut, p, r, muMoon, p.radii.w);
+    vec3 multiSun = sampleMultiscatter(multiscatterLut, p, r, muSun);
+    vec3 multiMoon = sampleMultiscatter(multiscatterLut, p, r, muMoon);
+    vec3 source = sunIrradiance * (sunLight * (rayleigh * ph.rayleighSun + mie * ph.mieSun) + (rayleigh + mie) * multiSun) +
+                  moonIrradiance *
+                      (moonLight * (rayleigh * ph.rayleighMoon + mie * ph.mieMoon) + (rayleigh + mie) * multiMoon);
+
+    vec3 opticalDepth = extinction * dt;
+    inscatter += transmittance * source * dt * atmosphereOneMinusExpOverX(opticalDepth);
+    transmittance *= exp(-opticalDepth);
+}
+
 void integrateScattering(sampler2D transmittanceLut, sampler2D multiscatterLut, IN(AtmosphereParams) p,
                          vec3 originM, vec3 dirEnu, float tMaxM, int steps, vec3 sunDirEnu, vec3 sunIrradiance,
                          vec3 moonDirEnu, vec3 moonIrradiance, OUT(vec3) inscatter, OUT(vec3) transmittance)
@@ -93,13 +144,7 @@ void integrateScattering(sampler2D transmittanceLut, sampler2D multiscatterLut, 
     if (tEnd <= tStart)
         return;
     float segment = tEnd - tStart;
-    float nuSun = dot(dirEnu, sunDirEnu);
-    float nuMoon = dot(dirEnu, moonDirEnu);
-    float g = p.mieExtinction.w;
-    float rayleighSun = rayleighPhase(nuSun);
-    float rayleighMoon = rayleighPhase(nuMoon);
-    float mieSun = miePhaseCornetteShanks(g, nuSun);
-    float mieMoon = miePhaseCornetteShanks(g, nuMoon);
+    ViewPhases ph = viewPhases(p, dirEnu, sunDirEnu, moonDirEnu);
     float tPrev = tStart;
     for (int i = 1; i <= steps; ++i)
     {
@@ -108,26 +153,8 @@ void integrateScattering(sampler2D transmittanceLut, sampler2D multiscatterLut, 
         float dt = t - tPrev;
         vec3 pos = originM + (0.5f * (t + tPrev)) * dirEnu;
         tPrev = t;
-        float r = length(pos);
-        float altitude = r - p.radii.x;
-        float muSun = dot(pos, sunDirEnu) / r;
-        float muMoon = dot(pos, moonDirEnu) / r;
-
-        vec3 rayleigh = rayleighScatteringAt(p, altitude);
-        vec3 mie = mieScatteringAt(p, altitude);
-        vec3 extinction = extinctionAt(p, altitude);
-        vec3 sunLight = transmittanceToLight(transmittanceLut, p, r, muSun, p.radii.z);
-        vec3 moonLight = transmittanceToLight(transmittanceLut, p, r, muMoon, p.radii.w);
-        vec3 multiSun = sampleMultiscatter(multiscatterLut, p, r, muSun);
-        vec3 multiMoon = sampleMultiscatter(multiscatterLut, p, r, muMoon);
-        vec3 source = sunIrradiance * (sunLight * (rayleigh * rayleighSun + mie * mieSun) + (rayleigh + mie) * multiSun) +
-                      moonIrradiance *
-                          (moonLight * (rayleigh * rayleighMoon + mie * mieMoon) + (rayleigh + mie) * multiMoon);
-
-        // Energy-conserving step (Hillaire 2015): integrate source * T analytically over the step.
-        vec3 opticalDepth = extinction * dt;
-        inscatter += transmittance * source * dt * atmosphereOneMinusExpOverX(opticalDepth);
-        transmittance *= exp(-opticalDepth);
+        scatteringStep(transmittanceLut, multiscatterLut, p, pos, dt, ph, sunDirEnu, sunIrradiance, moonDirEnu,
+                       moonIrradiance, inscatter, transmittance);
     }
 }
 

@@ -36,7 +36,7 @@ struct FrameParams
     vec4 ambientGround;  // rgb: irradiance on the ground (for light bounced up into cloud bases); w: unused
     vec4 exposure;       // x: display exposure multiplier; y: animation time (s); zw: sub-pixel jitter of the view rays (pixels)
     uvec4 image;         // x: width; y: height; z: frame index (decorrelates the march jitter); w: flags (FRAME_FLAG_*)
-    uvec4 march;         // x: max view steps; y: light samples (cone); z: light LOD distance (m, 0: off); w: unused
+    uvec4 march;         // x: max view steps; y: light samples (cone); zw: unused
     // Temporal reprojection (skyservice/render/reprojection.h). The previous camera is given in the
     // current eye's ENU frame, computed in double on the CPU (DESIGN §4).
     // reprojection x: block size (1: full resolution, 4: one pixel of each 4x4 block marched);
@@ -54,6 +54,10 @@ struct FrameParams
     // World-space march jitter (shaders/lib/world_jitter.glsl). x: angle of one jitter texel (rad), one
     // pixel at the image centre, so two channels of the same size and field of view share the texels.
     vec4 worldJitter;
+    // Level of detail of the march with distance (QualitySettings). x, y: the detail erosion fades out
+    // between these distances (m); z: beyond this distance (m) the light cone takes 3 cheap samples (0:
+    // never); w: cone samples that may take the full (detailed) density, nearest first.
+    vec4 marchLod;
 };
 
 // frame flags

@@ -56,6 +56,8 @@ struct BenchOptions
     uint32_t steps = 0;
     double lightLodM = -1;  ///< < 0: the renderer's default
     int lightSamples = -1;  ///< < 0: the renderer's default
+    int fullConeSamples = -1;
+    double detailFadeStartM = -1, detailFadeEndM = -1;
     bool noDetail = false;
     uint32_t gpuFrames = 1;
     bool shadowMap = false;
@@ -210,6 +212,12 @@ int runBench(const BenchOptions& o)
         quality.lightSamples = uint32_t(o.lightSamples);
     if (o.noDetail)
         quality.detail = false;
+    if (o.fullConeSamples >= 0)
+        quality.fullConeSamples = uint32_t(o.fullConeSamples);
+    if (o.detailFadeStartM >= 0)
+        quality.detailFadeStartM = o.detailFadeStartM;
+    if (o.detailFadeEndM >= 0)
+        quality.detailFadeEndM = o.detailFadeEndM;
 
     Renderer r;
     RendererOptions ro;
@@ -306,6 +314,11 @@ int main(int argc, char** argv)
     app.add_option("--light-samples", o.lightSamples, "Cone light samples (default: the renderer's; 0: none)")
         ->check(CLI::Range(0, 6));
     app.add_flag("--no-detail", o.noDetail, "Turn the detail erosion off");
+    app.add_option("--full-cone-samples", o.fullConeSamples, "Cone samples that may take the detailed density")
+        ->check(CLI::Range(0, 6));
+    app.add_option("--detail-fade-start", o.detailFadeStartM, "Detail erosion fades out from this distance (m)")
+        ->check(CLI::Range(0.0, 1e7));
+    app.add_option("--detail-fade-end", o.detailFadeEndM, "... to this distance (m)")->check(CLI::Range(0.0, 1e7));
     app.add_option("--light-lod", o.lightLodM, "Light LOD distance (m): beyond it 3 cheap cone samples (0: off)")
         ->check(CLI::Range(0.0, 1e7));
     try

@@ -47,12 +47,19 @@ SkyStatus createAtmosphereResources(Renderer& r)
     d.width = SKY_VIEW_LUT_WIDTH;
     d.height = SKY_VIEW_LUT_HEIGHT;
     SKY_TRY(createImage(r.ctx, r.memory, r.skyViewLut, d, "sky-view LUT"));
+    d.viewType = VK_IMAGE_VIEW_TYPE_3D;
+    d.width = AERIAL_LUT_WIDTH;
+    d.height = AERIAL_LUT_HEIGHT;
+    d.depth = AERIAL_LUT_SLICES;
+    SKY_TRY(createImage(r.ctx, r.memory, r.aerialInscatterLut, d, "aerial-perspective LUT (in-scattering)"));
+    SKY_TRY(createImage(r.ctx, r.memory, r.aerialTransmittanceLut, d, "aerial-perspective LUT (transmittance)"));
     SKY_TRY(createBuffer(r.ctx, r.memory, r.atmosphereUniforms, sizeof(AtmosphereParams),
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::HostVisible,
                          "atmosphere uniforms"));
     OneShot shot;
     SKY_TRY(beginOneShot(r.ctx, shot));
-    for (Image* img : {&r.transmittanceLut, &r.multiscatterLut, &r.skyViewLut})
+    for (Image* img : {&r.transmittanceLut, &r.multiscatterLut, &r.skyViewLut, &r.aerialInscatterLut,
+                       &r.aerialTransmittanceLut})
         transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     return endOneShot(r.ctx, shot);
 }
@@ -149,7 +156,7 @@ void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camer
     c.moonIrradiance =
         vec4(glm::vec3(in.sunIrradiance * moonIrradianceRelativeToSun(sunMoon.moonPhaseAngleDeg)), 0.0f);
     c.flags = uvec4(SKY_VIEW_FLAG_GROUND, 0u, 0u, 0u);
-    // The sky-view LUT is a pure function of these inputs and of the two LUTs above: a frame whose
+    // The sky-view and aerial-perspective LUTs are pure functions of these inputs and of the two LUTs above: a frame whose
     // inputs are bit for bit the last one's (a still eye, or one flying level, with the time frozen; the
     // frames of an accumulation) keeps it. Exact comparison, so the picture never depends on the past.
     if (!rebuild && r.skyViewInputsValid && std::memcmp(&c, &r.skyViewPush, sizeof c) == 0 &&
@@ -161,6 +168,10 @@ void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camer
     dispatch(r.ctx, cmd, r.skyViewProgram, SKY_VIEW_LUT_WIDTH, SKY_VIEW_LUT_HEIGHT, 1, c,
              {DescriptorInfo(r.atmosphereUniforms), DescriptorInfo(r.skyViewLut),
               DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.multiscatterLut, r.linearClamp)});
+    dispatch(r.ctx, cmd, r.aerialPerspectiveProgram, AERIAL_LUT_WIDTH, AERIAL_LUT_HEIGHT, 1, c,
+             {DescriptorInfo(r.atmosphereUniforms), DescriptorInfo(r.aerialInscatterLut),
+              DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.multiscatterLut, r.linearClamp),
+              DescriptorInfo(r.aerialTransmittanceLut)});
 }
 
 void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request, const Image& cloud,
@@ -170,7 +181,8 @@ void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& reques
              {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.atmosphereUniforms),
               DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.multiscatterLut, r.linearClamp),
               DescriptorInfo(r.skyViewLut, r.linearRepeat), DescriptorInfo(cloud), DescriptorInfo(depth),
-              DescriptorInfo(history), DescriptorInfo(linear), DescriptorInfo(r.displayImage)});
+              DescriptorInfo(history), DescriptorInfo(linear), DescriptorInfo(r.displayImage),
+              DescriptorInfo(r.aerialInscatterLut, r.linearRepeat), DescriptorInfo(r.aerialTransmittanceLut, r.linearRepeat)});
 }
 
 }  // namespace sky

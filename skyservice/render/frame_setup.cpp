@@ -135,7 +135,9 @@ FrameParams makeFrameParams(const FrameInputs& in)
     if (q.reprojected)
         flags |= FRAME_FLAG_REPROJECTED;
     f.image = uvec4(req.width, req.height, 0u, flags);
-    f.march = uvec4(q.maxViewSteps, q.lightSamples, uint32_t(std::max(q.lightLodDistanceM, 0.0)), 0u);
+    f.march = uvec4(q.maxViewSteps, q.lightSamples, 0u, 0u);
+    f.marchLod = vec4(float(q.detailFadeStartM), float(std::max(q.detailFadeEndM, q.detailFadeStartM + 1.0)),
+                      float(std::max(q.lightLodDistanceM, 0.0)), float(q.fullConeSamples));
     f.worldJitter = vec4(float(2.0 * std::tan(req.fovYDeg * M_PI / 360.0) / double(req.height)), 0.0f, 0.0f, 0.0f);
     f.reprojection = uvec4(1u, 0u, 0u, 0u);  // full resolution unless the renderer's reprojected path says otherwise
     return f;

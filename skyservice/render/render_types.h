@@ -21,6 +21,10 @@ struct QualitySettings
     uint32_t lightSamples = 6;       ///< cone samples toward the light (plus one long sample)
     /// Beyond this distance (m) the light cone takes 3 cheap samples over the same length (0: never).
     double lightLodDistanceM = 0.0;
+    /// Cone samples (nearest first) that may take the full, detail-eroded density; the rest are cheap.
+    uint32_t fullConeSamples = 6;
+    double detailFadeStartM = 8000.0;  ///< detail erosion fades out from here...
+    double detailFadeEndM = 25000.0;   ///< ...to here (beyond, its noise is finer than a pixel)
     uint32_t octaves = 3;            ///< multiple-scattering octaves (Wrenninge 2013)
     double extinctionPerM = 0.045;   ///< cloud extinction at density 1 (1/m); ~20 m mean free path
     double detailErosion = 0.35;     ///< strength of the detail-noise erosion

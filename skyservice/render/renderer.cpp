@@ -126,6 +126,7 @@ SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
         {&r.baseNoiseProgram, "base_noise"},     {&r.detailNoiseProgram, "detail_noise"},
         {&r.curlNoiseProgram, "curl_noise"},     {&r.transmittanceProgram, "transmittance_lut"},
         {&r.multiscatterProgram, "multiscatter_lut"}, {&r.skyViewProgram, "sky_view_lut"},
+        {&r.aerialPerspectiveProgram, "aerial_perspective_lut"},
         {&r.cloudProgram, "cloud_march"},        {&r.compositeProgram, "composite"},
         {&r.reconstructProgram, "reconstruct"},
     };
@@ -183,7 +184,7 @@ void destroyRenderer(Renderer& r)
     }
     vkDeviceWaitIdle(r.ctx.device);  // shutdown only
     for (Image* img : {&r.baseNoise, &r.detailNoise, &r.curlNoise, &r.blueNoise, &r.transmittanceLut,
-                       &r.multiscatterLut, &r.skyViewLut, &r.weatherWindowImage, &r.cloudImage, &r.depthImage,
+                       &r.multiscatterLut, &r.skyViewLut, &r.aerialInscatterLut, &r.aerialTransmittanceLut, &r.weatherWindowImage, &r.cloudImage, &r.depthImage,
                        &r.linearImage, &r.displayImage, &r.freshCloudImage, &r.freshDepthImage, &r.history[0],
                        &r.history[1], &r.linearStandIn, &r.historyStandIn})
         destroyImage(r.ctx, r.memory, *img);
@@ -191,7 +192,7 @@ void destroyRenderer(Renderer& r)
     destroyBuffer(r.ctx, r.memory, r.frameUniforms);
     destroyBuffer(r.ctx, r.memory, r.atmosphereUniforms);
     for (Program* p : {&r.baseNoiseProgram, &r.detailNoiseProgram, &r.curlNoiseProgram, &r.transmittanceProgram,
-                       &r.multiscatterProgram, &r.skyViewProgram, &r.cloudProgram, &r.compositeProgram,
+                       &r.multiscatterProgram, &r.skyViewProgram, &r.aerialPerspectiveProgram, &r.cloudProgram, &r.compositeProgram,
                        &r.reconstructProgram})
         destroyProgram(r.ctx, *p);
     for (VkSampler* s : {&r.linearRepeat, &r.linearClamp, &r.nearestRepeat})

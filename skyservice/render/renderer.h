@@ -40,11 +40,12 @@ struct Renderer
     MemoryTracker memory;
 
     Program baseNoiseProgram, detailNoiseProgram, curlNoiseProgram;
-    Program transmittanceProgram, multiscatterProgram, skyViewProgram;
+    Program transmittanceProgram, multiscatterProgram, skyViewProgram, aerialPerspectiveProgram;
     Program cloudProgram, compositeProgram, reconstructProgram;
 
     Image baseNoise, detailNoise, curlNoise, blueNoise;
     Image transmittanceLut, multiscatterLut, skyViewLut;
+    Image aerialInscatterLut, aerialTransmittanceLut;  ///< 3D, AERIAL_LUT_* (atmosphere_params.h)
     Image weatherWindowImage;
     Image cloudImage, depthImage, displayImage;
     Image linearImage;  ///< only while frames ask for it (QualitySettings::linearOutput)

@@ -193,6 +193,19 @@ void aerialPerspectiveCpu(const AtmosphereReference& a, const SkyViewPushConstan
                             inscatter, transmittance);
 }
 
+void aerialLutTexelCpu(const AtmosphereReference& a, const SkyViewPushConstants& c, int x, int y, int slice, int steps,
+                       glm::vec3& inscatter, glm::vec3& transmittance)
+{
+    float camRM = c.sunDirection.w;
+    float v = glsl::texCoordToUnitRange((float(y) + 0.5f) / float(AERIAL_LUT_HEIGHT), float(AERIAL_LUT_HEIGHT));
+    float zenith = glsl::skyViewZenithOfUnitV(a.params, camRM, std::clamp(v, 0.0f, 1.0f));
+    float azimuth = (float(x) + 0.5f) / float(AERIAL_LUT_WIDTH) * 2.0f * float(SKY_PI);
+    glsl::integrateScattering(a.transmittance.sampler(), a.multiscatter.sampler(), a.params, glm::vec3(0.0f, 0.0f, camRM),
+                              glsl::enuDirectionFromAngles(zenith, azimuth), glsl::aerialSliceDistanceM(float(slice)),
+                              steps, rgb(c.sunDirection), rgb(c.sunIrradiance), rgb(c.moonDirection),
+                              rgb(c.moonIrradiance), inscatter, transmittance);
+}
+
 glm::vec3 sampleTransmittanceCpu(const AtmosphereReference& a, float rM, float muSun)
 {
     return glsl::sampleTransmittance(a.transmittance.sampler(), a.params, rM, muSun);

@@ -81,6 +81,12 @@ void aerialPerspectiveCpu(const AtmosphereReference& atmosphere, const SkyViewPu
                           glm::vec3 camPosM, glm::vec3 dirEnu, float distanceM, glm::vec3& inscatter,
                           glm::vec3& transmittance);
 
+/// What texel (x, y, slice) of the aerial-perspective LUT should hold (aerial_perspective_lut.comp.glsl):
+/// the ray integral from the eye (constants.sunDirection.w from the centre) along the texel's direction
+/// to its slice distance, with `steps` quadrature steps on the CPU LUTs.
+void aerialLutTexelCpu(const AtmosphereReference& atmosphere, const SkyViewPushConstants& constants, int x, int y,
+                       int slice, int steps, glm::vec3& inscatter, glm::vec3& transmittance);
+
 /// Transmittance from rM along muSun to the top, looked up in the CPU LUT (sampleTransmittance()).
 glm::vec3 sampleTransmittanceCpu(const AtmosphereReference& atmosphere, float rM, float muSun);
 
