@@ -50,12 +50,15 @@ struct AtmosphereParams
 // and the transmittance between the eye and a distance along a direction, for the composite, which
 // otherwise integrated 10 steps of 4 LUT fetches per cloudy pixel (0.1-0.15 ms at 1080p on an H200).
 // Directions use the sky-view LUT's mapping (absolute azimuth, zenith rows crowded at the horizon), not
-// screen froxels (Hillaire 2020 §5.4), so that channels at a seam read the same texels. 96 x 54
-// directions x 32 distances up to 1000 km (atmosphere.glsl aerialSliceDistanceM), 2 steps per slice.
-#define AERIAL_LUT_WIDTH 96
-#define AERIAL_LUT_HEIGHT 54
-#define AERIAL_LUT_SLICES 32
-#define AERIAL_LUT_MAX_DISTANCE_M 1000000.0f
+// screen froxels (Hillaire 2020 §5.4), so that channels at a seam read the same texels. 80 x 44
+// directions (an even row count: no row lies exactly on the horizon, where the GPU and the CPU
+// reference disagree on whether the ray grazes the ground) x 24 distances up to 700 km (the march's
+// default reach; farther is read at 700 km; atmosphere.glsl aerialSliceDistanceM), 2 steps per slice:
+// 1.35 MB for both LUTs (the 1080p budget is 64 MB in all); within 0.7 % of a 400-step integral.
+#define AERIAL_LUT_WIDTH 80
+#define AERIAL_LUT_HEIGHT 44
+#define AERIAL_LUT_SLICES 24
+#define AERIAL_LUT_MAX_DISTANCE_M 700000.0f
 #define AERIAL_LUT_STEPS_PER_SLICE 2
 
 // Descriptor slots of the atmosphere passes (set 0), contiguous per pass: the transmittance pass
