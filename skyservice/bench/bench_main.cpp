@@ -82,7 +82,9 @@ nlohmann::json qualityJson(const QualitySettings& q)
             {"detail", q.detail},             {"highCloud", q.highCloud},       {"maxDistanceM", q.maxDistanceM},
             {"gpuFramesPerCall", q.accumulationFrames}, {"baseNoisePeriodM", q.baseNoisePeriodM},
             {"detailNoisePeriodM", q.detailNoisePeriodM}, {"extinctionPerM", q.extinctionPerM},
-            {"coneStepM", q.coneStepM}, {"lightLodDistanceM", q.lightLodDistanceM}};
+            {"coneStepM", q.coneStepM}, {"lightLodDistanceM", q.lightLodDistanceM},
+            {"fullConeSamples", q.fullConeSamples}, {"detailFadeStartM", q.detailFadeStartM},
+            {"detailFadeEndM", q.detailFadeEndM}};
 }
 
 // Box-filters an image down by an integer factor (contact sheet tiles only).
