@@ -17,19 +17,18 @@ layout(local_size_x = WORKGROUP_SIZE_2D, local_size_y = WORKGROUP_SIZE_2D) in;
 layout(binding = 0, std140) PARAMS_BLOCK FrameBlock { FrameParams frame; };
 layout(binding = 1, std140) PARAMS_BLOCK AtmosphereBlock { AtmosphereParams atmosphere; };
 layout(binding = 2) uniform sampler2D transmittanceLut;
-layout(binding = 3) uniform sampler2D multiscatterLut;
-layout(binding = 4) uniform sampler2D skyViewLut;
+layout(binding = 3) uniform sampler2D skyViewLut;
+// The aerial-perspective LUT of this frame (in-scattered light, transmittance).
+layout(binding = 4) uniform sampler3D aerialInscatterLut;
+layout(binding = 5) uniform sampler3D aerialTransmittanceLut;
 // Full-resolution frames: the march's cloud image and depth. Reprojected frames (FRAME_FLAG_REPROJECTED):
 // the block-resolution fresh pixels, and the packed history of the pixels not marched this frame.
-layout(binding = 5, rgba16f) uniform readonly image2D cloudIn;
-layout(binding = 6, r32f) uniform readonly image2D depthIn;
-layout(binding = 7, rgba16ui) uniform readonly uimage2D historyIn;  // 1x1 stand-in in full-resolution frames
+layout(binding = 6, rgba16f) uniform readonly image2D cloudIn;
+layout(binding = 7, r32f) uniform readonly image2D depthIn;
+layout(binding = 8, rgba16ui) uniform readonly uimage2D historyIn;  // 1x1 stand-in in full-resolution frames
 // The linear frame only when a caller reads it (FRAME_FLAG_NO_LINEAR_OUTPUT clear): 16.6 MB at 1080p.
-layout(binding = 8, rgba16f) uniform writeonly image2D linearOut;
-layout(binding = 9, rgba8) uniform writeonly image2D displayOut;
-// The aerial-perspective LUT of this frame (in-scattered light, transmittance).
-layout(binding = 10) uniform sampler3D aerialInscatterLut;
-layout(binding = 11) uniform sampler3D aerialTransmittanceLut;
+layout(binding = 9, rgba16f) uniform writeonly image2D linearOut;
+layout(binding = 10, rgba8) uniform writeonly image2D displayOut;
 
 #include "shaders/lib/atmosphere_sampling.glsl"
 #include "shaders/clouds/view_ray.glsl"

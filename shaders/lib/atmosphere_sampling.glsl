@@ -316,13 +316,3 @@ vec3 moonDiskRadiance(sampler2D transmittanceLut, IN(AtmosphereParams) p, vec3 v
     return radiance * sampleTransmittance(transmittanceLut, p, camRM, viewDirEnu.z);
 }
 
-// Aerial perspective between the eye at camPosM (relative to the earth centre, ENU axes) and a surface
-// distanceM along dirEnu: the light scattered into the ray and the transmittance of the segment, so that
-// seen = surface * transmittance + inscatter. ATMOSPHERE_AERIAL_STEPS steps, four LUT fetches each.
-void aerialPerspective(sampler2D transmittanceLut, sampler2D multiscatterLut, IN(AtmosphereParams) p, vec3 camPosM,
-                       vec3 dirEnu, float distanceM, vec3 sunDirEnu, vec3 sunIrradiance, vec3 moonDirEnu,
-                       vec3 moonIrradiance, OUT(vec3) inscatter, OUT(vec3) transmittance)
-{
-    integrateScattering(transmittanceLut, multiscatterLut, p, camPosM, dirEnu, distanceM, ATMOSPHERE_AERIAL_STEPS,
-                        sunDirEnu, sunIrradiance, moonDirEnu, moonIrradiance, inscatter, transmittance);
-}

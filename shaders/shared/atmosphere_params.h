@@ -44,7 +44,7 @@ struct AtmosphereParams
 #define ATMOSPHERE_MULTISCATTER_STEPS 20
 #define ATMOSPHERE_SKY_VIEW_MIN_STEPS 30
 #define ATMOSPHERE_SKY_VIEW_MAX_STEPS 60
-// Aerial perspective along a ray (aerialPerspective(): the CPU reference and tests): 10 steps.
+// Aerial perspective integrated along one ray (atmosphere_reference.h aerialPerspectiveCpu, in tests): 10 steps.
 #define ATMOSPHERE_AERIAL_STEPS 10
 // Aerial-perspective LUT (shaders/atmosphere/aerial_perspective_lut.comp.glsl): the in-scattered light
 // and the transmittance between the eye and a distance along a direction, for the composite, which

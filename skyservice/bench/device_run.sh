@@ -80,7 +80,7 @@ if [ "$MODE" = ab ]; then
       # shellcheck disable=SC2086
       timeout 200 $BENCH --scene all --width 1920 --height 1080 --frames 100 $extra --mode $m --device NVIDIA \
         --json "$OUT/bench-ab$i-$m.json" $v | grep -v "MiB$"
-      el "rc=$?"
+      el "rc=${PIPESTATUS[0]}"  # sky-bench's, not grep's
     done
     i=$((i + 1))
   done

@@ -179,10 +179,10 @@ void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& reques
 {
     dispatch(r.ctx, cmd, r.compositeProgram, request.width, request.height, 1, nullptr, 0,
              {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.atmosphereUniforms),
-              DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.multiscatterLut, r.linearClamp),
-              DescriptorInfo(r.skyViewLut, r.linearRepeat), DescriptorInfo(cloud), DescriptorInfo(depth),
-              DescriptorInfo(history), DescriptorInfo(linear), DescriptorInfo(r.displayImage),
-              DescriptorInfo(r.aerialInscatterLut, r.linearRepeat), DescriptorInfo(r.aerialTransmittanceLut, r.linearRepeat)});
+              DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.skyViewLut, r.linearRepeat),
+              DescriptorInfo(r.aerialInscatterLut, r.linearRepeat), DescriptorInfo(r.aerialTransmittanceLut, r.linearRepeat),
+              DescriptorInfo(cloud), DescriptorInfo(depth), DescriptorInfo(history), DescriptorInfo(linear),
+              DescriptorInfo(r.displayImage)});
 }
 
 }  // namespace sky

@@ -188,9 +188,9 @@ glm::vec3 referenceSkyRadiance(const AtmosphereReference& a, const SkyViewPushCo
 void aerialPerspectiveCpu(const AtmosphereReference& a, const SkyViewPushConstants& c, glm::vec3 camPosM,
                           glm::vec3 dirEnu, float distanceM, glm::vec3& inscatter, glm::vec3& transmittance)
 {
-    glsl::aerialPerspective(a.transmittance.sampler(), a.multiscatter.sampler(), a.params, camPosM, dirEnu, distanceM,
-                            rgb(c.sunDirection), rgb(c.sunIrradiance), rgb(c.moonDirection), rgb(c.moonIrradiance),
-                            inscatter, transmittance);
+    glsl::integrateScattering(a.transmittance.sampler(), a.multiscatter.sampler(), a.params, camPosM, dirEnu,
+                              distanceM, ATMOSPHERE_AERIAL_STEPS, rgb(c.sunDirection), rgb(c.sunIrradiance),
+                              rgb(c.moonDirection), rgb(c.moonIrradiance), inscatter, transmittance);
 }
 
 void aerialLutTexelCpu(const AtmosphereReference& a, const SkyViewPushConstants& c, int x, int y, int slice, int steps,

@@ -76,7 +76,10 @@ glm::vec3 skyRadianceLut(const AtmosphereReference& atmosphere, const SkyViewPus
 glm::vec3 referenceSkyRadiance(const AtmosphereReference& atmosphere, const SkyViewPushConstants& constants,
                                glm::vec3 viewDirEnu, int steps);
 
-/// aerialPerspective() of atmosphere_sampling.glsl on the CPU LUTs.
+/// Aerial perspective between the eye at camPosM (from the earth centre, ENU axes) and a surface distanceM
+/// along dirEnu, integrated directly (integrateScattering of atmosphere_sampling.glsl, ATMOSPHERE_AERIAL_STEPS
+/// steps) on the CPU LUTs: seen = surface * transmittance + inscatter. The renderer reads the same from
+/// the aerial-perspective LUT (aerialLutTexelCpu).
 void aerialPerspectiveCpu(const AtmosphereReference& atmosphere, const SkyViewPushConstants& constants,
                           glm::vec3 camPosM, glm::vec3 dirEnu, float distanceM, glm::vec3& inscatter,
                           glm::vec3& transmittance);

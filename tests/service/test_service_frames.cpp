@@ -49,6 +49,31 @@ uint64_t nextFrame(SkyClient* c, uint64_t after, int timeoutMs = 20000)
     return id;
 }
 
+/// The RGBA8 pixels of an acquired frame, rows packed (the ring's rows may be padded).
+std::vector<uint8_t> framePixels(const SkyFrame& f)
+{
+    std::vector<uint8_t> pixels;
+    for (uint32_t y = 0; y < f.height; ++y)
+        pixels.insert(pixels.end(), f.pixels + size_t(y) * f.row_bytes, f.pixels + size_t(y) * f.row_bytes + f.width * 4);
+    return pixels;
+}
+
+/// `skyservice render` of testView() at 2026-06-21T16:00:00Z with `extraArgs`, into dir/ref.png (+ .json),
+/// read back into `ref`.
+bool renderOneShotOfTestView(const std::string& dir, const std::string& extraArgs, sky::ImageRgba8& ref,
+                             std::string& error)
+{
+    std::string cmd = serviceBinary() + " render --quality test --lat 46 --lon 8 --alt 2500 --heading 200 --pitch 5"
+                      " --fov 60 --width 64 --height 36 --time 2026-06-21T16:00:00Z " + extraArgs + " --out " + dir +
+                      "/ref > " + dir + "/ref.log 2>&1";
+    if (std::system(cmd.c_str()) != 0)
+    {
+        error = "skyservice render failed: " + dir + "/ref.log";
+        return false;
+    }
+    return sky::readPng(dir + "/ref.png", ref, error);
+}
+
 }  // namespace
 
 // A frame from the service is byte for byte the frame `skyservice render` writes for the same view,
@@ -76,18 +101,12 @@ TEST(ServiceFrames, MatchesOneShotRender)
     ASSERT_EQ(f.width, 64u);
     ASSERT_EQ(f.height, 36u);
     EXPECT_DOUBLE_EQ(f.view.lat_deg, 46.0);
-    std::vector<uint8_t> pixels;
-    for (uint32_t y = 0; y < f.height; ++y)
-        pixels.insert(pixels.end(), f.pixels + size_t(y) * f.row_bytes, f.pixels + size_t(y) * f.row_bytes + f.width * 4);
+    std::vector<uint8_t> pixels = framePixels(f);
     ASSERT_EQ(sky_client_release_frame(c, &f), SKY_OK);
     sky_client_close(c);
 
-    std::string cmd = serviceBinary() + " render --quality test --lat 46 --lon 8 --alt 2500 --heading 200 --pitch 5"
-                      " --fov 60 --width 64 --height 36 --time 2026-06-21T16:00:00Z --out " + tmp.path + "/ref > " +
-                      tmp.path + "/ref.log 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0);
     sky::ImageRgba8 ref;
-    ASSERT_TRUE(sky::readPng(tmp.path + "/ref.png", ref, error)) << error;
+    ASSERT_TRUE(renderOneShotOfTestView(tmp.path, "", ref, error)) << error;
     ASSERT_EQ(ref.pixels.size(), pixels.size());
     size_t differing = 0;
     int maxDiff = 0;
@@ -144,18 +163,12 @@ TEST(ServiceFrames, LoadedWeatherFrameMatchesOneShotRender)
     SkyFrame f{};
     ASSERT_EQ(sky_client_acquire_frame(c, &f), SKY_OK);
     ASSERT_EQ(f.frame_id, id);
-    std::vector<uint8_t> pixels;
-    for (uint32_t y = 0; y < f.height; ++y)
-        pixels.insert(pixels.end(), f.pixels + size_t(y) * f.row_bytes, f.pixels + size_t(y) * f.row_bytes + f.width * 4);
+    std::vector<uint8_t> pixels = framePixels(f);
     ASSERT_EQ(sky_client_release_frame(c, &f), SKY_OK);
     sky_client_close(c);
 
-    std::string cmd = serviceBinary() + " render --quality test --lat 46 --lon 8 --alt 2500 --heading 200 --pitch 5"
-                      " --fov 60 --width 64 --height 36 --time 2026-06-21T16:00:00Z --weather " + wx + " --out " +
-                      tmp.path + "/ref > " + tmp.path + "/ref.log 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0);
     sky::ImageRgba8 ref;
-    ASSERT_TRUE(sky::readPng(tmp.path + "/ref.png", ref, error)) << error;
+    ASSERT_TRUE(renderOneShotOfTestView(tmp.path, "--weather " + wx, ref, error)) << error;
     EXPECT_TRUE(ref.pixels == pixels) << "the first frame that draws the loaded weather differs from the one-shot render";
     // The sidecars say which weather was drawn: the service's of that frame, and the one-shot's.
     s = raw.request({{"type", "write_files"}, {"prefix", tmp.path + "/svc"}}, 20000);
