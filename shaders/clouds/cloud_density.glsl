@@ -44,10 +44,16 @@ struct WeatherLookup
     bool inside;
 };
 
+// Window-plane position (m, the weather window's unwarped plane) of the point at map position `mapPosM`.
+vec2 windowPlanePosition(vec2 mapPosM)
+{
+    return frame.windowOffsetM.xy + mapPosM.x * frame.windowAxes.xy + mapPosM.y * frame.windowAxes.zw;
+}
+
 WeatherLookup weatherLookup(vec2 mapPosM)
 {
     WeatherLookup w;
-    vec2 planeM = frame.windowOffsetM.xy + mapPosM.x * frame.windowAxes.xy + mapPosM.y * frame.windowAxes.zw;
+    vec2 planeM = windowPlanePosition(mapPosM);
     w.uv = windowWarp(planeM, frame.earth.w, frame.earth.z) / (2.0f * frame.earth.w) + 0.5f;
     w.inside = all(greaterThanEqual(w.uv, vec2(0.0f))) && all(lessThan(w.uv, vec2(1.0f)));
     w.texel = clamp(ivec2(w.uv * float(WEATHER_WINDOW_SIZE)), ivec2(0), ivec2(WEATHER_WINDOW_SIZE - 1));

@@ -1,20 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Lighting of cloud samples and the view march. Included by cloud passes after cloud_density.glsl.
 
-// Offsets that spread the six light samples over a cone (unit-length-ish, fixed so frames agree).
-const vec3 kConeKernel[6] = vec3[](vec3(0.38f, -0.52f, 0.29f), vec3(-0.71f, 0.12f, -0.44f),
-                                  vec3(0.15f, 0.83f, -0.31f), vec3(-0.27f, -0.36f, 0.88f),
-                                  vec3(0.91f, 0.24f, -0.18f), vec3(-0.48f, 0.66f, 0.52f));
-
-// The light that shapes the clouds: the sun by day and in twilight down to -4 degrees, else the moon.
-bool moonIsKeyLight()
-{
-    return frame.sunDirection.z < -0.07f;
-}
-vec3 keyLightDirection()
-{
-    return moonIsKeyLight() ? frame.moonDirection.xyz : frame.sunDirection.xyz;
-}
 vec3 keyLightIrradiance()
 {
     return moonIsKeyLight() ? frame.moonIrradiance.rgb : frame.sunIrradiance.rgb;
@@ -31,8 +17,10 @@ vec3 keyLightAt(vec3 p, vec3 lightDir)
 
 // Optical depth toward the light: 6 samples in a widening cone, then one long sample at 3x the cone
 // length (Schneider 2015); cheap density once the path is already dense, and beyond the first
-// frame.marchLod.w samples. Beyond frame.marchLod.z metres (0: never) 3 cheap samples cover the same
-// cone: there a pixel spans tens of metres and the view samples are far apart.
+// frame.marchLod.w samples. Near the eye those cheap far samples come precomputed from the light volume
+// (shaders/shared/light_volume.h): one fetch instead of 5 density lookups. Beyond frame.marchLod.z metres
+// (0: never) 3 cheap samples cover the same cone: there a pixel spans tens of metres and the view
+// samples are far apart.
 float lightOpticalDepth(vec3 p, vec3 lightDir, float distanceM)
 {
     float stepM = frame.phaseTerms.w;
@@ -45,18 +33,33 @@ float lightOpticalDepth(vec3 p, vec3 lightDir, float distanceM)
         samples = 3u;
     }
     uint fullSamples = coarse ? 0u : uint(frame.marchLod.w);
+    uint liveSamples = samples;
+    vec3 uvw = vec3(0.0f);
+    bool fromVolume = false;
+    if (!coarse && fullSamples < samples)
+    {
+        float h;
+        vec2 mapPosM = weatherMapPosition(p, h);
+        fromVolume = lightVolumeCoordinates(windowPlanePosition(mapPosM), h, uvw);
+        if (fromVolume)
+            liveSamples = fullSamples;
+    }
     float depth = 0.0f;
     float t = 0.0f;
-    for (uint i = 0u; i < samples; ++i)
+    for (uint i = 0u; i < liveSamples; ++i)
     {
         float len = stepM * float(i + 1u);
         t += len;
-        vec3 q = p + lightDir * (t - 0.5f * len) + kConeKernel[i] * (0.25f * t);
         bool cheap = i >= fullSamples || depth * frame.cloudLook.x > 0.3f;
-        depth += cloudDensity(q, cheap, distanceM).density * len;
+        depth += cloudDensity(coneSamplePoint(p, lightDir, i, t, len), cheap, distanceM).density * len;
     }
-    vec3 far = p + lightDir * (3.0f * t);
-    depth += cloudDensity(far, true, distanceM).density * t;
+    if (fromVolume)
+    {
+        // The volume holds transmittance (light_volume.h says why); 1e-7: below it, no light reaches.
+        float tailTransmittance = textureLod(lightVolume, uvw, 0.0f).x;
+        return depth * frame.cloudLook.x - log(max(tailTransmittance, 1e-7f));
+    }
+    depth += cloudDensity(p + lightDir * (3.0f * t), true, distanceM).density * t;
     return depth * frame.cloudLook.x;
 }
 

@@ -9,6 +9,7 @@
 #include "shaders/shared/frame_params.h"
 #include "shaders/shared/weather_window.h"
 #include "shaders/shared/atmosphere_params.h"
+#include "shaders/shared/light_volume.h"
 #include "shaders/lib/shell.glsl"
 #include "shaders/lib/cloud_shape.glsl"
 #include "shaders/lib/phase.glsl"
@@ -28,9 +29,13 @@ layout(binding = 6) uniform sampler2D blueNoise;
 layout(binding = 7) uniform sampler2D transmittanceLut;
 layout(binding = 8, rgba16f) uniform writeonly image2D cloudOut;
 layout(binding = 9, r32f) uniform writeonly image2D depthOut;
+// Optical depth of the far part of the light cone around the eye (light_volume.h); a 1x1x1 stand-in
+// when frame.lightVolume.z is 0 (no volume this frame).
+layout(binding = 10) uniform sampler3D lightVolume;
 
 #include "shaders/lib/atmosphere_sampling.glsl"
 #include "shaders/clouds/cloud_density.glsl"
+#include "shaders/clouds/light_cone.glsl"
 #include "shaders/clouds/cloud_lighting.glsl"
 #include "shaders/clouds/high_cloud.glsl"
 #include "shaders/clouds/view_ray.glsl"

@@ -58,6 +58,9 @@ struct FrameParams
     // between these distances (m); z: beyond this distance (m) the light cone takes 3 cheap samples (0:
     // never); w: cone samples that may take the full (detailed) density, nearest first.
     vec4 marchLod;
+    // The light volume (light_volume.h): xy: window-plane position (m) of its corner texel's corner; z:
+    // texel size (m), 0 when there is none this frame; w: unused (its tail starts after marchLod.w samples).
+    vec4 lightVolume;
 };
 
 // frame flags

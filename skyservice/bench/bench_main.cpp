@@ -57,6 +57,7 @@ struct BenchOptions
     double lightLodM = -1;  ///< < 0: the renderer's default
     int lightSamples = -1;  ///< < 0: the renderer's default
     int fullConeSamples = -1;
+    double lightVolumeTexelM = -1;  ///< < 0: the renderer's default; 0: no light volume
     double detailFadeStartM = -1, detailFadeEndM = -1;
     bool noDetail = false;
     uint32_t gpuFrames = 1;
@@ -84,7 +85,7 @@ nlohmann::json qualityJson(const QualitySettings& q)
             {"detailNoisePeriodM", q.detailNoisePeriodM}, {"extinctionPerM", q.extinctionPerM},
             {"coneStepM", q.coneStepM}, {"lightLodDistanceM", q.lightLodDistanceM},
             {"fullConeSamples", q.fullConeSamples}, {"detailFadeStartM", q.detailFadeStartM},
-            {"detailFadeEndM", q.detailFadeEndM}};
+            {"detailFadeEndM", q.detailFadeEndM}, {"lightVolumeTexelM", q.lightVolumeTexelM}};
 }
 
 // Box-filters an image down by an integer factor (contact sheet tiles only).
@@ -216,6 +217,8 @@ int runBench(const BenchOptions& o)
         quality.detail = false;
     if (o.fullConeSamples >= 0)
         quality.fullConeSamples = uint32_t(o.fullConeSamples);
+    if (o.lightVolumeTexelM >= 0)
+        quality.lightVolumeTexelM = o.lightVolumeTexelM;
     if (o.detailFadeStartM >= 0)
         quality.detailFadeStartM = o.detailFadeStartM;
     if (o.detailFadeEndM >= 0)
@@ -318,6 +321,9 @@ int main(int argc, char** argv)
     app.add_flag("--no-detail", o.noDetail, "Turn the detail erosion off");
     app.add_option("--full-cone-samples", o.fullConeSamples, "Cone samples that may take the detailed density")
         ->check(CLI::Range(0, 6));
+    app.add_option("--light-volume-texel", o.lightVolumeTexelM,
+                   "Light volume texel size (m; 0: no light volume, every cone sample marched)")
+        ->check(CLI::Range(0.0, 5000.0));
     app.add_option("--detail-fade-start", o.detailFadeStartM, "Detail erosion fades out from this distance (m)")
         ->check(CLI::Range(0.0, 1e7));
     app.add_option("--detail-fade-end", o.detailFadeEndM, "... to this distance (m)")->check(CLI::Range(0.0, 1e7));

@@ -11,7 +11,7 @@ namespace
 {
 
 // Columns of the table in pipeline order; passes not named here follow, then "total" last.
-const char* const kPassOrder[] = {"shadowMap", "sky", "clouds", "march", "reconstruct", "composite"};
+const char* const kPassOrder[] = {"shadowMap", "sky", "lightVolume", "clouds", "march", "reconstruct", "composite"};
 
 std::vector<std::string> passColumns(const BenchRun& run)
 {

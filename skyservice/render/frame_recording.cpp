@@ -2,6 +2,7 @@
 #include "skyservice/render/frame_recording.h"
 
 #include "skyservice/render/atmosphere_passes.h"
+#include "skyservice/render/light_volume.h"
 
 #include <cstring>
 #include <glm/gtc/packing.hpp>
@@ -59,7 +60,7 @@ void mergeReprojectedCloud(const Renderer& r, const ViewRequest& request, const 
 }  // namespace
 
 SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame& camera, const SunMoon& sunMoon,
-                     const FrameInputs& in, RenderResult& result)
+                     const FrameInputs& in, const FrameParams& params, RenderResult& result)
 {
     const bool reprojected = in.quality->reprojected;
     OneShot shot;
@@ -70,6 +71,8 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
     recordAtmosphere(r, cmd, camera, sunMoon, in);
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsSkyView);
+    recordLightVolume(r, cmd, params);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsLightVolume);
     // Reprojected: one invocation per block (4x4, or finer near clouds) into the fresh images.
     const uint32_t block = reprojected ? r.reprojection.block.blockPx : 1u;
     uint32_t marchX = (request.width + block - 1) / block;
@@ -81,7 +84,7 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
               DescriptorInfo(r.weatherWindowImage, r.linearClamp), DescriptorInfo(r.baseNoise, r.linearRepeat),
               DescriptorInfo(r.detailNoise, r.linearRepeat), DescriptorInfo(r.curlNoise, r.linearRepeat),
               DescriptorInfo(r.blueNoise, r.nearestRepeat), DescriptorInfo(r.transmittanceLut, r.linearClamp),
-              DescriptorInfo(marchCloud), DescriptorInfo(marchDepth)});
+              DescriptorInfo(marchCloud), DescriptorInfo(marchDepth), DescriptorInfo(r.lightVolume, r.linearClamp)});
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsClouds);
     // Reprojected: the packed history the reconstruct pass writes this frame (which the next frame
@@ -110,6 +113,9 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
     {
         auto ms = [&](uint32_t a, uint32_t b) { return double(ts[b] - ts[a]) * r.ctx.timestampPeriodNs * 1e-6; };
         result.gpuMs["sky"] = ms(kTsStart, kTsSkyView);
+        // Part of the march (and of "clouds" in full mode), shown on its own as well.
+        if (params.lightVolume.z > 0.0f)
+            result.gpuMs["lightVolume"] = ms(kTsSkyView, kTsLightVolume);
         if (reprojected)
         {
             result.gpuMs["march"] = ms(kTsSkyView, kTsClouds);

@@ -13,14 +13,15 @@ enum TimestampSlot : uint32_t
 {
     kTsStart,
     kTsSkyView,
+    kTsLightVolume,  ///< after the light volume (written right after kTsSkyView when there is none)
     kTsClouds,  ///< after the march (full or 1/16)
     kTsReconstruct,  ///< after the reconstruct pass (written right after kTsClouds in full mode)
     kTsComposite,
     kTsCount
 };
 
-// One frame on the GPU: sky-view LUT, cloud march, composite, then the readback of every image.
+// One frame on the GPU (`params`: what the frame uniforms hold): sky-view LUT, light volume, cloud march, composite, then the readback of every image.
 SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame& camera, const SunMoon& sunMoon,
-                     const FrameInputs& in, RenderResult& result);
+                     const FrameInputs& in, const FrameParams& params, RenderResult& result);
 
 }  // namespace sky

@@ -21,8 +21,12 @@ struct QualitySettings
     uint32_t lightSamples = 6;       ///< cone samples toward the light (plus one long sample)
     /// Beyond this distance (m) the light cone takes 3 cheap samples over the same length (0: never).
     double lightLodDistanceM = 0.0;
-    /// Cone samples (nearest first) that may take the full, detail-eroded density; the rest are cheap.
-    uint32_t fullConeSamples = 6;
+    /// Cone samples (nearest first) that may take the full, detail-eroded density; the rest are cheap,
+    /// and near the eye they come from the light volume (shaders/shared/light_volume.h).
+    uint32_t fullConeSamples = 2;
+    /// Texel size of the light volume on the ground (m; LIGHT_VOLUME_SIZE texels a side); 0: no volume,
+    /// every cone sample marched.
+    double lightVolumeTexelM = 160.0;
     double detailFadeStartM = 8000.0;  ///< detail erosion fades out from here...
     double detailFadeEndM = 25000.0;   ///< ...to here (beyond, its noise is finer than a pixel)
     uint32_t octaves = 3;            ///< multiple-scattering octaves (Wrenninge 2013)

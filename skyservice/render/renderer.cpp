@@ -8,6 +8,7 @@
 #include "skyservice/render/frame_images.h"
 #include "skyservice/render/frame_recording.h"
 #include "skyservice/render/frame_setup.h"
+#include "skyservice/render/light_volume.h"
 #include "skyservice/render/shadow_map.h"
 #include "skyservice/render/window_upload.h"
 #include "skyservice/sky/blue_noise.h"
@@ -128,7 +129,7 @@ SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
         {&r.multiscatterProgram, "multiscatter_lut"}, {&r.skyViewProgram, "sky_view_lut"},
         {&r.aerialPerspectiveProgram, "aerial_perspective_lut"},
         {&r.cloudProgram, "cloud_march"},        {&r.compositeProgram, "composite"},
-        {&r.reconstructProgram, "reconstruct"},
+        {&r.reconstructProgram, "reconstruct"},  {&r.lightVolumeProgram, "light_volume"},
     };
     for (const auto& [program, name] : programs)
         SKY_TRY(createProgram(r.ctx, *program, name));
@@ -171,6 +172,7 @@ SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                          MemoryUse::HostVisible, "frame uniforms"));
     SKY_TRY(createAtmosphereResources(r));
+    SKY_TRY(createLightVolume(r));
     SKY_TRY(generateNoise(r, options.noiseSeed));
     return SkyStatus::success();
 }
@@ -184,7 +186,7 @@ void destroyRenderer(Renderer& r)
     }
     vkDeviceWaitIdle(r.ctx.device);  // shutdown only
     for (Image* img : {&r.baseNoise, &r.detailNoise, &r.curlNoise, &r.blueNoise, &r.transmittanceLut,
-                       &r.multiscatterLut, &r.skyViewLut, &r.aerialInscatterLut, &r.aerialTransmittanceLut, &r.weatherWindowImage, &r.cloudImage, &r.depthImage,
+                       &r.multiscatterLut, &r.skyViewLut, &r.aerialInscatterLut, &r.aerialTransmittanceLut, &r.weatherWindowImage, &r.lightVolume, &r.cloudImage, &r.depthImage,
                        &r.linearImage, &r.displayImage, &r.freshCloudImage, &r.freshDepthImage, &r.history[0],
                        &r.history[1], &r.linearStandIn, &r.historyStandIn})
         destroyImage(r.ctx, r.memory, *img);
@@ -193,7 +195,7 @@ void destroyRenderer(Renderer& r)
     destroyBuffer(r.ctx, r.memory, r.atmosphereUniforms);
     for (Program* p : {&r.baseNoiseProgram, &r.detailNoiseProgram, &r.curlNoiseProgram, &r.transmittanceProgram,
                        &r.multiscatterProgram, &r.skyViewProgram, &r.aerialPerspectiveProgram, &r.cloudProgram, &r.compositeProgram,
-                       &r.reconstructProgram})
+                       &r.reconstructProgram, &r.lightVolumeProgram})
         destroyProgram(r.ctx, *p);
     for (VkSampler* s : {&r.linearRepeat, &r.linearClamp, &r.nearestRepeat})
         if (*s)
@@ -309,10 +311,11 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
         params.exposure.w = frames > 1 ? float(halton(k + 1, 3) - 0.5) : 0.0f;
         std::memcpy(r.frameUniforms.mapped, &params, sizeof params);
         RenderResult one;
-        SkyStatus status = renderOnce(r, request, camera, sunMoon, in, one);
+        SkyStatus status = renderOnce(r, request, camera, sunMoon, in, params, one);
         if (!status.ok())
         {
             r.atmosphereRadiusM = 0;  // the LUTs recorded for this frame may never have been computed
+            r.lightVolumeKey.valid = false;  // nor the light volume
             r.skyViewInputsValid = false;
             return status;
         }

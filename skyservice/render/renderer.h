@@ -14,6 +14,7 @@
 #include "shaders/shared/atmosphere_params.h"
 #include "skyservice/earth/weather_window.h"
 #include "skyservice/render/render_types.h"
+#include "skyservice/render/light_volume.h"
 #include "skyservice/render/reprojection.h"
 #include "skyservice/render/shadow_map.h"
 #include "skyservice/render/weather_stage.h"
@@ -41,12 +42,14 @@ struct Renderer
 
     Program baseNoiseProgram, detailNoiseProgram, curlNoiseProgram;
     Program transmittanceProgram, multiscatterProgram, skyViewProgram, aerialPerspectiveProgram;
-    Program cloudProgram, compositeProgram, reconstructProgram;
+    Program cloudProgram, compositeProgram, reconstructProgram, lightVolumeProgram;
 
     Image baseNoise, detailNoise, curlNoise, blueNoise;
     Image transmittanceLut, multiscatterLut, skyViewLut;
     Image aerialInscatterLut, aerialTransmittanceLut;  ///< 3D, AERIAL_LUT_* (atmosphere_params.h)
     Image weatherWindowImage;
+    Image lightVolume;  ///< 3D, light_volume.h: the far part of the light cones around the eye
+    LightVolumeKey lightVolumeKey;  ///< what lightVolume holds (valid = false: nothing yet)
     Image cloudImage, depthImage, displayImage;
     Image linearImage;  ///< only while frames ask for it (QualitySettings::linearOutput)
     // Reprojection (created on the first reprojected frame): the marched pixels at block resolution

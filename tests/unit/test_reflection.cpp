@@ -27,10 +27,11 @@ TEST(Reflection, CloudMarchInterface)
     sky::ShaderInterface iface;
     std::string error;
     ASSERT_TRUE(sky::reflectSpirv(loadSpirv("cloud_march"), iface, error)) << error;
-    ASSERT_EQ(iface.bindings.size(), 10u);
+    ASSERT_EQ(iface.bindings.size(), 11u);
     EXPECT_EQ(iface.bindings[0], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
     EXPECT_EQ(iface.bindings[2], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     EXPECT_EQ(iface.bindings[8], VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+    EXPECT_EQ(iface.bindings[10], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);  // the light volume
     EXPECT_EQ(iface.localSize[0], uint32_t(WORKGROUP_SIZE_2D));
     EXPECT_EQ(iface.pushConstantSize, 0u);
 }
@@ -38,7 +39,7 @@ TEST(Reflection, CloudMarchInterface)
 // The variant for lavapipe reads the same parameter blocks as storage buffers (bindings.h PARAMS_BLOCK).
 TEST(Reflection, StorageVariantReadsParametersFromStorageBuffers)
 {
-    for (const char* name : {"cloud_march", "composite", "reconstruct", "shadow_map", "sky_view_lut"})
+    for (const char* name : {"cloud_march", "composite", "reconstruct", "shadow_map", "sky_view_lut", "light_volume"})
     {
         sky::ShaderInterface plain, storage;
         std::string error;

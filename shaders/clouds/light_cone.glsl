@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: MIT
+// The key light and the far part of its cone of samples, shared by the march (cloud_lighting.glsl) and
+// the light volume that precomputes that part around the eye (light_volume.comp.glsl). Included after
+// cloud_density.glsl.
+
+// Offsets that spread the six light samples over a cone (unit-length-ish, fixed so frames agree).
+const vec3 kConeKernel[6] = vec3[](vec3(0.38f, -0.52f, 0.29f), vec3(-0.71f, 0.12f, -0.44f),
+                                  vec3(0.15f, 0.83f, -0.31f), vec3(-0.27f, -0.36f, 0.88f),
+                                  vec3(0.91f, 0.24f, -0.18f), vec3(-0.48f, 0.66f, 0.52f));
+
+// The light that shapes the clouds: the sun by day and in twilight down to -4 degrees, else the moon.
+bool moonIsKeyLight()
+{
+    return frame.sunDirection.z < -0.07f;
+}
+vec3 keyLightDirection()
+{
+    return moonIsKeyLight() ? frame.moonDirection.xyz : frame.sunDirection.xyz;
+}
+
+// Cone sample i (0-based) toward the light from `p`: step i is (i + 1) x stepM long and ends at the
+// distance `t` the steps so far cover; the sample sits mid-step, pushed sideways by a quarter of `t`.
+vec3 coneSamplePoint(vec3 p, vec3 lightDir, uint i, float t, float len)
+{
+    return p + lightDir * (t - 0.5f * len) + kConeKernel[i] * (0.25f * t);
+}
+
+// Relative density x metres of cone samples first..samples-1 (cheap density) and of the long sample at
+// 3x the cone length: the part of the light path the light volume holds.
+float coneTailDepth(vec3 p, vec3 lightDir, uint first, uint samples, float stepM)
+{
+    float t = stepM * float(first * (first + 1u) / 2u);
+    float depth = 0.0f;
+    for (uint i = first; i < samples; ++i)
+    {
+        float len = stepM * float(i + 1u);
+        t += len;
+        depth += cloudDensity(coneSamplePoint(p, lightDir, i, t, len), true, 0.0f).density * len;
+    }
+    return depth + cloudDensity(p + lightDir * (3.0f * t), true, 0.0f).density * t;
+}
+
+// Light-volume coordinates of a point at window-plane position `planeM` and altitude `altitudeM`; false
+// when it lies outside the volume's texel centres (the march then takes the live cone) or the volume is off.
+bool lightVolumeCoordinates(vec2 planeM, float altitudeM, out vec3 uvw)
+{
+    float texelM = frame.lightVolume.z;
+    vec2 uv = (planeM - frame.lightVolume.xy) / (texelM * float(LIGHT_VOLUME_SIZE));
+    float w = (altitudeM - frame.shell.x) / max(frame.shell.y - frame.shell.x, 1.0f);
+    uvw = vec3(uv, w);
+    float margin = 0.5f / float(LIGHT_VOLUME_SIZE);
+    return texelM > 0.0f && all(greaterThanEqual(uv, vec2(margin))) && all(lessThanEqual(uv, vec2(1.0f - margin)));
+}

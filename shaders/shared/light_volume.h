@@ -1,0 +1,24 @@
+// SPDX-License-Identifier: MIT
+// The light volume (issue 5): optical depth toward the key light, precomputed each frame around the eye,
+// so that a lit view sample near the eye reads one texel instead of marching the far part of its light
+// cone. Shared by the C++ renderer and the shaders.
+//
+// Texel (i, j, k) of a LIGHT_VOLUME_SIZE^2 x LIGHT_VOLUME_LEVELS R16F volume holds, for the point at
+//   window-plane position frame.lightVolume.xy + (i + 0.5, j + 0.5) * frame.lightVolume.z (metres, the
+//   unwarped plane of the weather window: fixed to the ground while the window is, so the texels do not
+//   slide with the eye), altitude shell.x + (k + 0.5) / LEVELS * (shell.y - shell.x),
+// the transmittance exp(-cloudLook.x x relative density x metres) of the cone samples from
+// frame.marchLod.w on and of the long sample, all with the cheap (base-shape) density: the tail of
+// lightOpticalDepth() (shaders/clouds/light_cone.glsl). Transmittance, not optical depth, because the
+// march interpolates between texels: across a cloud's edge, where the tail goes from clear to opaque, the
+// mean of two optical depths made the lit side far too dark (Jensen: exp of a mean is below the mean of
+// exps); measured on tests/gpu/test_light_volume.cpp's cumulus from below, 33.6 dB with optical depth. The first cone samples stay live and detailed,
+// because they make the sunlit skin of a cloud (a mean free path is ~20 m); the tail starts 210 m away
+// and spreads over a cone hundreds of metres wide, so 160 m texels lose little.
+#ifndef SKY_SHARED_LIGHT_VOLUME_H
+#define SKY_SHARED_LIGHT_VOLUME_H
+
+#define LIGHT_VOLUME_SIZE 96     // texels per side on the window plane (96 x 160 m: 7.7 km around the eye)
+#define LIGHT_VOLUME_LEVELS 24   // altitude levels over the cloud shell
+
+#endif

@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: MIT
+#include "skyservice/render/light_volume.h"
+
+#include "shaders/shared/light_volume.h"
+#include "skyservice/render/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace sky
+{
+
+SkyStatus createLightVolume(Renderer& r)
+{
+    ImageDesc d;
+    d.viewType = VK_IMAGE_VIEW_TYPE_3D;
+    d.format = VK_FORMAT_R16_SFLOAT;  // transmittance: half floats keep 11 bits down to 6e-5, less to 6e-8
+    d.width = d.height = LIGHT_VOLUME_SIZE;
+    d.depth = LIGHT_VOLUME_LEVELS;
+    SKY_TRY(createImage(r.ctx, r.memory, r.lightVolume, d, "light volume"));
+    OneShot shot;
+    SKY_TRY(beginOneShot(r.ctx, shot));
+    transitionImage(shot.cmd, r.lightVolume, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    return endOneShot(r.ctx, shot);
+}
+
+void placeLightVolume(const QualitySettings& quality, FrameParams& frame)
+{
+    frame.lightVolume = vec4(0.0f);
+    const uint32_t samples = std::min(quality.lightSamples, 6u);
+    const bool hasVolumetricCloud = frame.shell.y > frame.shell.x;
+    if (quality.lightVolumeTexelM <= 0.0 || quality.fullConeSamples >= samples || !hasVolumetricCloud)
+        return;
+    // Snapped in double: the corner is a whole number of texels on the window plane, so that frames
+    // (and display channels) with eyes in the same texel build the same volume.
+    const double texelM = quality.lightVolumeTexelM;
+    const double half = 0.5 * double(LIGHT_VOLUME_SIZE);
+    const double cornerX = (std::floor(double(frame.windowOffsetM.x) / texelM) - half) * texelM;
+    const double cornerY = (std::floor(double(frame.windowOffsetM.y) / texelM) - half) * texelM;
+    frame.lightVolume = vec4(float(cornerX), float(cornerY), float(texelM), 0.0f);
+}
+
+FrameParams lightVolumeInputs(const FrameParams& frame)
+{
+    FrameParams f = frame;
+    f.cameraRight = f.cameraUp = vec4(0.0f);
+    f.cameraForward = vec4(0.0f, 0.0f, 0.0f, frame.cameraForward.w);  // the eye altitude places the texels
+    f.exposure = vec4(0.0f);
+    f.image = uvec4(0u);
+    f.reprojection = uvec4(0u);
+    f.previousRight = f.previousUp = f.previousForward = f.previousEye = vec4(0.0f);
+    f.worldJitter = vec4(0.0f);
+    return f;
+}
+
+void recordLightVolume(Renderer& r, VkCommandBuffer cmd, const FrameParams& frame)
+{
+    if (frame.lightVolume.z <= 0.0f)
+        return;
+    LightVolumeKey key;
+    key.inputs = lightVolumeInputs(frame);
+    key.window = r.window ? r.window->key : WindowKey{};
+    key.valid = true;
+    // FrameParams is all vec4/uvec4 (std140 without padding): bytewise equality is field equality.
+    if (r.lightVolumeKey.valid && r.lightVolumeKey.window == key.window &&
+        std::memcmp(&r.lightVolumeKey.inputs, &key.inputs, sizeof(FrameParams)) == 0)
+        return;
+    r.lightVolumeKey = key;
+    dispatch(r.ctx, cmd, r.lightVolumeProgram, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS, nullptr, 0,
+             {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.weatherWindowImage, r.linearClamp),
+              DescriptorInfo(r.baseNoise, r.linearRepeat), DescriptorInfo(r.detailNoise, r.linearRepeat),
+              DescriptorInfo(r.curlNoise, r.linearRepeat), DescriptorInfo(r.lightVolume)});
+    computeBarrier(cmd);
+}
+
+}  // namespace sky

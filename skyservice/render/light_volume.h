@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: MIT
+// The light volume (shaders/shared/light_volume.h): the far part of every light cone around the eye,
+// precomputed once per frame so that the march's lit samples near the eye read it instead of marching it.
+#pragma once
+
+#include "shaders/shared/frame_params.h"
+#include "skyservice/render/render_types.h"
+#include "skyservice/render/window_provider.h"
+#include "skyservice/vk/resources.h"
+
+namespace sky
+{
+
+struct Renderer;
+
+/// What the volume was built from: the frame uniforms less the fields that only aim the camera or
+/// time-stamp the frame (lightVolumeInputs), and the weather window's key. A frame with the same inputs
+/// (a still view, the frames of an accumulation, a paused simulator) reuses the volume: bit for bit what
+/// it would build.
+struct LightVolumeKey
+{
+    FrameParams inputs{};
+    WindowKey window;
+    bool valid = false;
+};
+
+/// `frame` with the camera axes, image size, frame index, sub-pixel jitter and reprojection fields zeroed.
+FrameParams lightVolumeInputs(const FrameParams& frame);
+
+/// Creates the volume image (LIGHT_VOLUME_SIZE^2 x LIGHT_VOLUME_LEVELS, R16F: 0.44 MB), layout GENERAL.
+SkyStatus createLightVolume(Renderer& r);
+
+/**
+ * Fills frame.lightVolume: the volume's corner on the window plane, snapped to whole texels so that the
+ * texels stay fixed to the ground while the eye moves in a window, and its texel size; z = 0 (no volume)
+ * when the quality turns it off, when no cone sample is cheap (nothing to precompute) or when the frame
+ * has no volumetric cloud.
+ **********************************************************************/
+void placeLightVolume(const QualitySettings& quality, FrameParams& frame);
+
+/// Records the pass that fills the volume for `frame`, then a barrier; nothing when frame.lightVolume.z
+/// is 0 or when the volume already holds these inputs (Renderer::lightVolumeKey).
+void recordLightVolume(Renderer& r, VkCommandBuffer cmd, const FrameParams& frame);
+
+}  // namespace sky
