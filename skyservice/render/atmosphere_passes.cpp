@@ -26,10 +26,25 @@ double atmosphereGroundRadiusM(const CameraFrame& camera)
 
 glm::dvec3 toD(const glm::vec3& v) { return glm::dvec3(v.x, v.y, v.z); }
 
+// The sky-view and aerial-perspective LUTs are kept while their inputs are bit for bit the same, but an
+// eye in flight turns its ENU axes, so the sun's and moon's ENU directions change every frame (~1e-6 rad
+// at 250 m/s): the directions the LUTs are built for are rounded to 2^-14 per component (6e-5 rad,
+// 0.0035 degrees; a sky-view texel is 1-2 degrees, and the disks are drawn at the exact directions) and
+// the moon's angular radius to 1e-5 of itself, so level flight at 250 m/s keeps the LUTs for ~30 frames. Rounding, not "rebuild when it moved enough": the sky
+// stays a function of this frame's inputs alone (channels and one-shot renders get the same bytes).
+vec3 lutDirection(const glm::dvec3& d)
+{
+    const double step = 1.0 / 16384.0;
+    glm::dvec3 q = glm::round(d / step) * step;
+    double n = glm::length(q);
+    return n > 0.0 ? vec3(q / n) : vec3(0.0f, 0.0f, 1.0f);
+}
+
 AtmosphereParams frameAtmosphere(double radiusM, const SunMoon& sunMoon)
 {
     AtmosphereParams p = makeEarthAtmosphere(radiusM);
-    p.radii.w = float(moonAngularRadiusRad(sunMoon.moon.distanceM));
+    double moonRadiusRad = moonAngularRadiusRad(sunMoon.moon.distanceM);
+    p.radii.w = float(std::round(moonRadiusRad * 1e8) * 1e-8);  // 1e-5 of ~4.5e-3 rad
     return p;
 }
 
@@ -126,7 +141,10 @@ LightingEstimate estimateLighting(Renderer& r, const CameraFrame& camera, const 
     double whiteRadiance =
         glm::dot(0.6 * keyLight + M_PI * e.ambientSkyRadiance, glm::dvec3(0.2126, 0.7152, 0.0722)) / M_PI;
     const double kNightFloorRadiance = 2e-6;
-    e.exposure = 1.2 / std::max(whiteRadiance, kNightFloorRadiance);
+    // Rounded to 1/512 of a stop (0.14 %, below an 8-bit display step): the LUTs hold pre-exposed radiance,
+    // and an exposure that drifts by 1e-7 every frame of a flight would rebuild them every frame.
+    double exposure = 1.2 / std::max(whiteRadiance, kNightFloorRadiance);
+    e.exposure = std::exp2(std::round(std::log2(exposure) * 512.0) / 512.0);
     return e;
 }
 
@@ -150,9 +168,9 @@ void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camer
     }
     SkyViewPushConstants c;
     std::memset(&c, 0, sizeof c);
-    c.sunDirection = vec4(glm::vec3(sunMoon.sun.directionEnu), float(R + camera.eye.altitudeM));
+    c.sunDirection = vec4(lutDirection(sunMoon.sun.directionEnu), float(R + camera.eye.altitudeM));
     c.sunIrradiance = vec4(glm::vec3(in.sunIrradiance), 0.0f);
-    c.moonDirection = vec4(glm::vec3(sunMoon.moon.directionEnu), 0.0f);
+    c.moonDirection = vec4(lutDirection(sunMoon.moon.directionEnu), 0.0f);
     c.moonIrradiance =
         vec4(glm::vec3(in.sunIrradiance * moonIrradianceRelativeToSun(sunMoon.moonPhaseAngleDeg)), 0.0f);
     c.flags = uvec4(SKY_VIEW_FLAG_GROUND, 0u, 0u, 0u);

@@ -106,3 +106,31 @@ TEST_F(AerialLut, HazeGrowsWithDistance)
             EXPECT_LE(transmittance[far].g, transmittance[near].g) << x << " slice " << k;
         }
 }
+
+// An eye in level flight turns its ENU axes a little every frame; the LUTs are built for sun and moon
+// directions rounded to 2^-14 (atmosphere_passes.cpp), so one 60 Hz frame at 250 m/s keeps them (the
+// same inputs, bit for bit) while 20 km moves the sun far enough to rebuild them.
+TEST_F(AerialLut, LevelFlightKeepsTheLutsForManyFrames)
+{
+    setWeather(*renderer, WeatherSnapshot{});
+    ViewRequest v = lookUp(45.0, 7.0, 3000.0, 5.0, "2026-06-21T09:00:00Z");
+    v.width = 32;
+    v.height = 18;
+    auto pushAfter = [&](double northM) {
+        ViewRequest moved = v;
+        moved.pose.latDeg += northM / 111132.0;
+        renderOk(moved, testQuality());
+        return renderer->skyViewPush;
+    };
+    SkyViewPushConstants start = pushAfter(0.0);
+    int rebuilds = 0;
+    for (int frame = 1; frame <= 30; ++frame)
+    {
+        SkyViewPushConstants now = pushAfter(frame * 250.0 / 60.0);
+        rebuilds += std::memcmp(&now, &start, sizeof now) != 0 ? 1 : 0;
+        start = now;
+    }
+    EXPECT_LE(rebuilds, 3) << "of 30 frames at 250 m/s";
+    SkyViewPushConstants far = pushAfter(20000.0);
+    EXPECT_NE(std::memcmp(&far, &start, sizeof far), 0) << "20 km on";
+}
