@@ -11,6 +11,10 @@
 #define WORKGROUP_SIZE_2D 8
 // 4x4x4 = 64 invocations for 3D noise generation, for the same reason.
 #define WORKGROUP_SIZE_3D 4
+// The reconstruct pass (shaders/clouds/reconstruct.comp.glsl) gives each invocation a 2x2 quad of pixels:
+// a quad lies inside one march block for every block size (4, 2; 1 marches every pixel), so its pixels
+// share one fresh neighbourhood, loaded once.
+#define RECONSTRUCT_QUAD_PX 2
 
 // Noise texture sizes (DESIGN §3: Perlin-Worley 128^3 RGBA8, Worley 32^3, 2D curl noise).
 #define BASE_NOISE_SIZE 128
