@@ -135,11 +135,6 @@ void loadFreshBox(ivec2 block, ivec2 phase, int B, INOUT(FreshBox) box)
         }
 }
 
-void writeAll(ivec2 pixel, vec4 cloud, float depth)
-{
-    imageStore(historyOut, pixel, packCloudHistory(cloud, depth));
-}
-
 // Projects `v` (from the previous eye, current ENU axes) into the previous image: pixel coordinates
 // in `q`, false when behind the previous camera or off its screen.
 bool projectPrevious(vec3 v, out vec2 q)
@@ -154,16 +149,11 @@ bool projectPrevious(vec3 v, out vec2 q)
     return q.x >= 0.0f && q.y >= 0.0f && q.x < float(frame.image.x) && q.y < float(frame.image.y);
 }
 
-// A pixel not marched this frame (its block is `block`; `box` is shared by the pixels of the block).
-void reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshBox) box)
+// A pixel not marched this frame (its block is `block`; `box` is shared by the pixels of the block):
+// its cloud, and its depth (m) in `depthM`. One value and one store per pixel, whichever way it goes
+// (lavapipe runs both sides of every branch: a store and a packing per way would all be paid).
+vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshBox) box, OUT(float) depthM)
 {
-    ivec2 nearestBlock = nearestFreshBlock(pixel, phase, B);  // read only where history is rejected or missing
-    if (frame.reprojection.w == 0u)
-    {
-        writeAll(pixel, freshBilinear(pixel, phase, B), imageLoad(freshDepth, nearestBlock).x);
-        return;
-    }
-
     // Where was this pixel's cloud in the previous frame? Project the direction alone first (exact for
     // anything far away), read the previous depth found there, and project again at that depth (one
     // fixed-point step: follows the parallax of near clouds when the eye moves; exact for a still
@@ -173,7 +163,7 @@ void reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
     vec3 dir = viewRayDirection(vec2(pixel) + 0.5f);
     vec2 q = vec2(0.0f);
     vec3 v = dir;
-    bool onScreen = projectPrevious(v, q);
+    bool onScreen = frame.reprojection.w != 0u && projectPrevious(v, q);
     ivec2 texel = ivec2(q);
     uvec4 previousTexel = uvec4(0u);
     float previousDepth = 0.0f;
@@ -226,23 +216,26 @@ void reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
             accept = all(greaterThanEqual(previous, box.lo - margin)) && all(lessThanEqual(previous, box.hi + margin));
         }
     }
-    if (!accept)
+    if (accept)
     {
-        // Rejected history (disocclusion, colour clamp) takes the nearest fresh pixel: a sharp value
-        // beside a cloud edge; no history at all (the border the view turns toward) the interpolated
-        // fresh pixels, which do not copy 4x4 blocks there.
-        writeAll(pixel, onScreen ? imageLoad(freshCloud, nearestBlock) : freshBilinear(pixel, phase, B),
-                 imageLoad(freshDepth, nearestBlock).x);
-        return;
+        depthM = depthGuess;
+        return previous;
     }
-    writeAll(pixel, previous, depthGuess);
+    // Rejected history (disocclusion, colour clamp) takes the nearest fresh pixel: a sharp value beside a
+    // cloud edge; no history at all (none kept, or off the previous screen: the border the view turns
+    // toward) the interpolated fresh pixels, which do not copy 4x4 blocks there. Both keep the nearest
+    // fresh pixel's depth.
+    ivec2 nearestBlock = nearestFreshBlock(pixel, phase, B);
+    depthM = imageLoad(freshDepth, nearestBlock).x;
+    return onScreen ? imageLoad(freshCloud, nearestBlock) : freshBilinear(pixel, phase, B);
 }
 
 void main()
 {
     const int B = int(frame.reprojection.x);  // 4; 2 or 1 near or inside a cloud layer
     ivec2 phase = ivec2(int(frame.reprojection.y), int(frame.reprojection.z));
-    ivec2 quadOrigin = ivec2(permutedId(gl_GlobalInvocationID.xy, (frame.image.y + RECONSTRUCT_QUAD_PX - 1u) / RECONSTRUCT_QUAD_PX)) * RECONSTRUCT_QUAD_PX;
+    uint quadRows = (frame.image.y + RECONSTRUCT_QUAD_PX - 1u) / RECONSTRUCT_QUAD_PX;
+    ivec2 quadOrigin = ivec2(permutedId(gl_GlobalInvocationID.xy, quadRows)) * RECONSTRUCT_QUAD_PX;
     FreshBox box;
     box.loaded = false;
     for (int i = 0; i < RECONSTRUCT_QUAD_PX * RECONSTRUCT_QUAD_PX; ++i)
@@ -251,9 +244,15 @@ void main()
         if (pixel.x >= int(frame.image.x) || pixel.y >= int(frame.image.y))
             continue;
         ivec2 block = pixel / B;
+        vec4 cloud;
+        float depthM;
         if (pixel == block * B + phase)
-            writeAll(pixel, imageLoad(freshCloud, block), imageLoad(freshDepth, block).x);
+        {
+            cloud = imageLoad(freshCloud, block);
+            depthM = imageLoad(freshDepth, block).x;
+        }
         else
-            reconstructPixel(pixel, block, phase, B, box);
+            cloud = reconstructPixel(pixel, block, phase, B, box, depthM);
+        imageStore(historyOut, pixel, packCloudHistory(cloud, depthM));
     }
 }

@@ -6,10 +6,12 @@
 # the baseline there (falling back to the binaries built on the dev machine), then times both at
 # 1920x1080, 640x360 and 3840x2160 and writes JSON, the baseline's log and an SM-clock log to $OUT.
 set -u
-ROOT=$PWD; G=$ROOT/.gpu; P=/tmp/deps
+# SKY_BENCH_GL_DIR and SKY_BENCH_GPU_DIR point elsewhere than .gl/ and .gpu/ (e.g. folders carried from
+# another checkout: the device tool copies the session's main checkout, not a worktree).
+ROOT=$PWD; G=${SKY_BENCH_GPU_DIR:-$ROOT/.gpu}; GL=${SKY_BENCH_GL_DIR:-$ROOT/.gl}; P=/tmp/deps
 exec > >(tee "$OUT/log.txt") 2>&1
 T0=$(date +%s); el() { echo "[t+$(( $(date +%s) - T0 ))s] $*"; }
-for f in .gl/*.deb; do dpkg -x "$f" /; done; ldconfig
+for f in "$GL"/*.deb; do dpkg -x "$f" /; done; ldconfig
 mkdir -p $P; for f in "$G"/debs/*.deb; do dpkg -x "$f" $P; done
 export LD_LIBRARY_PATH=$P/usr/lib/x86_64-linux-gnu
 export SKY_SPIRV_DIR=$G/spirv
