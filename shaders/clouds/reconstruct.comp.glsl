@@ -15,12 +15,12 @@
 // (shaders/lib/cloud_history.glsl): the composite reads the pixels not marched this frame from it (the
 // marched ones from the fresh image, at full precision), and the next frame reprojects it.
 //
-// Cost (issue 5 targets the whole 4K frame at 0.35 ms; this pass was 0.25 ms of it on an H200, a pass
-// bound by its image loads): each invocation reconstructs a quad of RECONSTRUCT_QUAD_PX^2 pixels,
-// which lies inside one block for every block size (B = 4 or 2; B = 1 marches every pixel), so its
-// pixels share one fresh neighbourhood, loaded at most once and only when a pixel's history moved
-// (a still pixel is never colour-clamped); the nearest fresh pixel is computed, not searched; the
-// history texel found by the depth fixed point is read once and serves the still pixel's value.
+// Cost (issue 5 targets the whole 4K frame at 0.35 ms; this pass took 0.25 ms of it on an H200, since
+// 0.09-0.11 ms with a still eye and 0.19-0.20 ms at 250 m/s, BENCHMARKS.md): the fresh neighbourhood is loaded only when a pixel's history moved (a still
+// pixel is never colour-clamped), and once for all the pixels of an invocation's quad
+// (RECONSTRUCT_QUAD_PX^2 pixels, inside one block for every block size: B = 4 or 2, and B = 1 marches
+// every pixel); the nearest fresh pixel is computed, not searched with a depth load per candidate; the
+// history texel found by the depth fixed point is read once and serves as the still pixel's value.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
