@@ -14,6 +14,13 @@
 // the fresh pixels interpolated. The result is this frame's cloud history, packed in 64 bits a texel
 // (shaders/lib/cloud_history.glsl): the composite reads the pixels not marched this frame from it (the
 // marched ones from the fresh image, at full precision), and the next frame reprojects it.
+//
+// Cost (issue 5 targets the whole 4K frame at 0.35 ms; this pass took 0.25 ms of it on an H200, since
+// 0.09-0.11 ms with a still eye and 0.19-0.20 ms at 250 m/s, BENCHMARKS.md): the fresh neighbourhood is loaded only when a pixel's history moved (a still
+// pixel is never colour-clamped), and once for all the pixels of an invocation's quad
+// (RECONSTRUCT_QUAD_PX^2 pixels, inside one block for every block size: B = 4 or 2, and B = 1 marches
+// every pixel); the nearest fresh pixel is computed, not searched with a depth load per candidate; the
+// history texel found by the depth fixed point is read once and serves as the still pixel's value.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -54,13 +61,6 @@ vec4 historyCloud(ivec2 p)
     return unpackCloudHistory(imageLoad(historyIn, p), depthM);
 }
 
-float historyDepth(ivec2 p)
-{
-    float depthM;
-    unpackCloudHistory(imageLoad(historyIn, p), depthM);
-    return depthM;
-}
-
 // Bilinear read of the previous cloud image at pixel coordinates `q` (premultiplied colour and alpha
 // interpolate correctly); a nearest read would shift every reprojected pixel by up to half a pixel.
 vec4 bilinearHistory(vec2 q)
@@ -76,18 +76,23 @@ vec4 bilinearHistory(vec2 q)
     return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
 }
 
-// The fresh pixels interpolated bilinearly at `pixel`: what a pixel without any history shows. Fresh
-// pixels sit B pixels apart, at b * B + phase; outside their grid (the image borders) the nearest row or
-// column is extended. Measured on the turns of tests/gpu/test_flight_path.cpp: the worst 8-pixel band
-// the view turns toward is 0.7-1.7 dB closer to the full render than with the nearest fresh pixel, which
-// copies B x B blocks there; for rejected history inside the image the nearest pixel measured better.
+// Fresh pixels per row and column: they sit B pixels apart, at b * B + phase, inside the image.
+ivec2 freshBlockCount(ivec2 phase, int B)
+{
+    return (ivec2(frame.image.xy) - phase + B - 1) / B;
+}
+
+// The fresh pixels interpolated bilinearly at `pixel`: what a pixel without any history shows. Outside
+// the fresh pixels' grid (the image borders) the nearest row or column is extended. Measured on the
+// turns of tests/gpu/test_flight_path.cpp: the worst 8-pixel band the view turns toward is 0.7-1.7 dB
+// closer to the full render than with the nearest fresh pixel, which copies B x B blocks there; for
+// rejected history inside the image the nearest pixel measured better.
 vec4 freshBilinear(ivec2 pixel, ivec2 phase, int B)
 {
-    ivec2 blocks = (ivec2(frame.image.xy) - phase + B - 1) / B;  // fresh pixels per row and column
     vec2 u = vec2(pixel - phase) / float(B);
     ivec2 b0 = ivec2(floor(u));
     vec2 f = u - vec2(b0);
-    ivec2 top = blocks - 1;
+    ivec2 top = freshBlockCount(phase, B) - 1;
     vec4 c00 = imageLoad(freshCloud, clamp(b0, ivec2(0), top));
     vec4 c10 = imageLoad(freshCloud, clamp(b0 + ivec2(1, 0), ivec2(0), top));
     vec4 c01 = imageLoad(freshCloud, clamp(b0 + ivec2(0, 1), ivec2(0), top));
@@ -95,9 +100,39 @@ vec4 freshBilinear(ivec2 pixel, ivec2 phase, int B)
     return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
 }
 
-void writeAll(ivec2 pixel, vec4 cloud, float depth)
+// The block of the fresh pixel nearest to `pixel`. Distance separates into x and y, so each axis takes
+// its nearer fresh column (row): round((pixel - phase) / B), halves rounded down (the earlier search
+// over the 3x3 neighbourhood kept the first of equals, the lower one), then clamped to the fresh pixels
+// inside the image (the nearest one along an axis when the rounded one lies outside). B is a power of
+// two, so the float division is exact.
+ivec2 nearestFreshBlock(ivec2 pixel, ivec2 phase, int B)
 {
-    imageStore(historyOut, pixel, packCloudHistory(cloud, depth));
+    ivec2 b = ivec2(floor(vec2(2 * (pixel - phase) + B - 1) / float(2 * B)));
+    return clamp(b, ivec2(0), freshBlockCount(phase, B) - 1);
+}
+
+// The colour range of the fresh 3x3 neighbourhood of a block (the fresh pixels inside the image).
+struct FreshBox
+{
+    bool loaded;
+    vec4 lo;
+    vec4 hi;
+};
+
+void loadFreshBox(ivec2 block, ivec2 phase, int B, INOUT(FreshBox) box)
+{
+    box.loaded = true;
+    box.lo = vec4(1e30f);
+    box.hi = vec4(-1e30f);
+    ivec2 first = max(block - 1, ivec2(0));
+    ivec2 last = min(block + 1, freshBlockCount(phase, B) - 1);
+    for (int y = first.y; y <= last.y; ++y)
+        for (int x = first.x; x <= last.x; ++x)
+        {
+            vec4 c = imageLoad(freshCloud, ivec2(x, y));
+            box.lo = min(box.lo, c);
+            box.hi = max(box.hi, c);
+        }
 }
 
 // Projects `v` (from the previous eye, current ENU axes) into the previous image: pixel coordinates
@@ -114,80 +149,57 @@ bool projectPrevious(vec3 v, out vec2 q)
     return q.x >= 0.0f && q.y >= 0.0f && q.x < float(frame.image.x) && q.y < float(frame.image.y);
 }
 
-void main()
+// A pixel not marched this frame (its block is `block`; `box` is shared by the pixels of the block):
+// its cloud, and its depth (m) in `depthM`. One value and one store per pixel, whichever way it goes
+// (lavapipe runs both sides of every branch: a store and a packing per way would all be paid).
+vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshBox) box, OUT(float) depthM)
 {
-    ivec2 pixel = ivec2(permutedPixel(gl_GlobalInvocationID.xy));
-    if (pixel.x >= int(frame.image.x) || pixel.y >= int(frame.image.y))
-        return;
-    const int B = int(frame.reprojection.x);  // 4; 2 or 1 near or inside a cloud layer
-    ivec2 phase = ivec2(int(frame.reprojection.y), int(frame.reprojection.z));
-    ivec2 block = pixel / B;
-    if (pixel == block * B + phase)
-    {
-        writeAll(pixel, imageLoad(freshCloud, block), imageLoad(freshDepth, block).x);
-        return;
-    }
-
-    // The fresh 3x3 neighbourhood: its colour range and the fresh pixel nearest to this one.
-    vec4 lo = vec4(1e30f);
-    vec4 nearest = vec4(0.0f);
-    vec4 hi = vec4(-1e30f);
-    float nearestDepth = 0.0f;
-    int nearestD2 = 1 << 30;
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
-        {
-            ivec2 b = block + ivec2(dx, dy);
-            ivec2 p = b * B + phase;
-            if (b.x < 0 || b.y < 0 || p.x >= int(frame.image.x) || p.y >= int(frame.image.y))
-                continue;
-            vec4 c = imageLoad(freshCloud, b);
-            lo = min(lo, c);
-            hi = max(hi, c);
-            ivec2 d = p - pixel;
-            int d2 = d.x * d.x + d.y * d.y;
-            if (d2 < nearestD2)
-            {
-                nearestD2 = d2;
-                nearest = c;
-                nearestDepth = imageLoad(freshDepth, b).x;
-            }
-        }
-    if (frame.reprojection.w == 0u)
-    {
-        writeAll(pixel, freshBilinear(pixel, phase, B), nearestDepth);
-        return;
-    }
-
     // Where was this pixel's cloud in the previous frame? Project the direction alone first (exact for
     // anything far away), read the previous depth found there, and project again at that depth (one
     // fixed-point step: follows the parallax of near clouds when the eye moves; exact for a still
-    // camera). Zero depth (no cloud) keeps the direction alone. Starting from the previous depth at
-    // this pixel instead measured 1-2 dB worse on a pan with 50-200 m of eye motion per frame.
+    // camera). Zero depth (no cloud) keeps the direction alone: the second step would repeat the first.
+    // Starting from the previous depth at this pixel instead measured 1-2 dB worse on a pan with
+    // 50-200 m of eye motion per frame.
     vec3 dir = viewRayDirection(vec2(pixel) + 0.5f);
     vec2 q = vec2(0.0f);
     vec3 v = dir;
-    float depthGuess = 0.0f;
-    bool accept = true;
+    bool onScreen = frame.reprojection.w != 0u && projectPrevious(v, q);
+    ivec2 texel = ivec2(q);
+    uvec4 previousTexel = uvec4(0u);
     float previousDepth = 0.0f;
-    for (int pass = 0; pass < 2 && accept; ++pass)
+    float depthGuess = 0.0f;
+    if (onScreen)
     {
-        v = depthGuess > 0.0f ? dir * depthGuess - frame.previousEye.xyz : dir;
-        accept = projectPrevious(v, q);
-        if (!accept)
-            break;
-        previousDepth = historyDepth(ivec2(q));
+        previousTexel = imageLoad(historyIn, texel);
+        unpackCloudHistory(previousTexel, previousDepth);
         // The previous depth is measured from the previous eye: the distance from this eye.
         depthGuess = previousDepth > 0.0f ? length(frame.previousEye.xyz + normalize(v) * previousDepth) : 0.0f;
     }
-    bool onScreen = accept;
+    if (onScreen && depthGuess > 0.0f)
+    {
+        v = dir * depthGuess - frame.previousEye.xyz;
+        onScreen = projectPrevious(v, q);
+        if (onScreen)
+        {
+            if (ivec2(q) != texel)
+            {
+                texel = ivec2(q);
+                previousTexel = imageLoad(historyIn, texel);
+            }
+            unpackCloudHistory(previousTexel, previousDepth);
+            depthGuess = previousDepth > 0.0f ? length(frame.previousEye.xyz + normalize(v) * previousDepth) : 0.0f;
+        }
+    }
+    bool accept = onScreen;
     vec4 previous = vec4(0.0f);
     if (accept)
     {
         // A pixel that lands where it was (a still view) keeps its history whatever its neighbours say:
         // it was marched at this very place, and the 16-frame refresh brings in what changed since.
+        // Its history is the texel just read (q lies within kStillPx of this pixel's centre).
         bool still = distance(q, vec2(pixel) + 0.5f) < kStillPx;
-        previous = still ? historyCloud(pixel) : bilinearHistory(q);
+        float unusedDepthM;
+        previous = still ? unpackCloudHistory(previousTexel, unusedDepthM) : bilinearHistory(q);
         // Disocclusion: the fixed point did not settle: the refined depth, seen from the previous eye,
         // disagrees with the previous depth found there (the ray crossed a cloud edge of another distance).
         if (previousDepth > 0.0f && depthGuess > 0.0f)
@@ -195,18 +207,52 @@ void main()
             float expected = length(dir * depthGuess - frame.previousEye.xyz);
             accept = abs(previousDepth - expected) <= kDepthTolerance * expected + kDepthToleranceFloorM;
         }
-        // Colour clamp against the fresh neighbourhood.
-        vec4 margin = kClampWiden * (hi - lo) + kClampMargin;
-        bool inBox = all(greaterThanEqual(previous, lo - margin)) && all(lessThanEqual(previous, hi + margin));
-        accept = accept && (still || inBox);
+        // Colour clamp against the fresh neighbourhood (not for a still pixel, which keeps its history).
+        if (accept && !still)
+        {
+            if (!box.loaded)
+                loadFreshBox(block, phase, B, box);
+            vec4 margin = kClampWiden * (box.hi - box.lo) + kClampMargin;
+            accept = all(greaterThanEqual(previous, box.lo - margin)) && all(lessThanEqual(previous, box.hi + margin));
+        }
     }
-    if (!accept)
+    if (accept)
     {
-        // Rejected history (disocclusion, colour clamp) takes the nearest fresh pixel: a sharp value
-        // beside a cloud edge; no history at all (the border the view turns toward) the interpolated
-        // fresh pixels, which do not copy 4x4 blocks there.
-        writeAll(pixel, onScreen ? nearest : freshBilinear(pixel, phase, B), nearestDepth);
-        return;
+        depthM = depthGuess;
+        return previous;
     }
-    writeAll(pixel, previous, depthGuess);
+    // Rejected history (disocclusion, colour clamp) takes the nearest fresh pixel: a sharp value beside a
+    // cloud edge; no history at all (none kept, or off the previous screen: the border the view turns
+    // toward) the interpolated fresh pixels, which do not copy 4x4 blocks there. Both keep the nearest
+    // fresh pixel's depth.
+    ivec2 nearestBlock = nearestFreshBlock(pixel, phase, B);
+    depthM = imageLoad(freshDepth, nearestBlock).x;
+    return onScreen ? imageLoad(freshCloud, nearestBlock) : freshBilinear(pixel, phase, B);
+}
+
+void main()
+{
+    const int B = int(frame.reprojection.x);  // 4; 2 or 1 near or inside a cloud layer
+    ivec2 phase = ivec2(int(frame.reprojection.y), int(frame.reprojection.z));
+    uint quadRows = (frame.image.y + RECONSTRUCT_QUAD_PX - 1u) / RECONSTRUCT_QUAD_PX;
+    ivec2 quadOrigin = ivec2(permutedId(gl_GlobalInvocationID.xy, quadRows)) * RECONSTRUCT_QUAD_PX;
+    FreshBox box;
+    box.loaded = false;
+    for (int i = 0; i < RECONSTRUCT_QUAD_PX * RECONSTRUCT_QUAD_PX; ++i)
+    {
+        ivec2 pixel = quadOrigin + ivec2(i % RECONSTRUCT_QUAD_PX, i / RECONSTRUCT_QUAD_PX);
+        if (pixel.x >= int(frame.image.x) || pixel.y >= int(frame.image.y))
+            continue;
+        ivec2 block = pixel / B;
+        vec4 cloud;
+        float depthM;
+        if (pixel == block * B + phase)
+        {
+            cloud = imageLoad(freshCloud, block);
+            depthM = imageLoad(freshDepth, block).x;
+        }
+        else
+            cloud = reconstructPixel(pixel, block, phase, B, box, depthM);
+        imageStore(historyOut, pixel, packCloudHistory(cloud, depthM));
+    }
 }

@@ -43,13 +43,24 @@ void main()
     float rc = frame.earth.y;
     float hc = frame.cameraForward.w;
 
-    vec3 sky = sampleSkyView(skyViewLut, atmosphere, dir, rc);
+    // The direction's angles, for the sky-view LUT and again for the aerial-perspective LUT.
+    float zenithRad = acos(clamp(dir.z, -1.0f, 1.0f));
+    float azimuthRad = enuAzimuth(dir);
+    vec3 sky = sampleSkyViewAt(skyViewLut, atmosphere, rc, zenithRad, azimuthRad);
     bool groundHit = rayGroundDistance(rc, dir.z, hc, frame.earth.x) >= 0.0f;
     if (!groundHit)
     {
-        sky += sunDiskRadiance(transmittanceLut, atmosphere, dir, rc, frame.sunDirection.xyz, frame.sunIrradiance.rgb);
-        sky += moonDiskRadiance(transmittanceLut, atmosphere, dir, rc, frame.moonDirection.xyz, frame.sunDirection.xyz,
-                                frame.moonIrradiance.rgb);
+        // Both disks are seen through the same air, the transmittance from the eye along dir: one LUT
+        // read, and only on a disk (lavapipe runs both sides of every branch: it paid two reads a pixel).
+        vec3 sun = sunDiskEmission(atmosphere, dir, rc, frame.sunDirection.xyz, frame.sunIrradiance.rgb);
+        vec3 moon = moonDiskEmission(atmosphere, dir, rc, frame.moonDirection.xyz, frame.sunDirection.xyz,
+                                     frame.moonIrradiance.rgb);
+        if (sun != vec3(0.0f) || moon != vec3(0.0f))
+        {
+            vec3 viewTransmittance = sampleTransmittance(transmittanceLut, atmosphere, rc, dir.z);
+            sky += sun * viewTransmittance;
+            sky += moon * viewTransmittance;
+        }
     }
 
     vec4 cloud;
@@ -73,8 +84,8 @@ void main()
     {
         vec3 inscatter;
         vec3 transmittance;
-        sampleAerialLut(aerialInscatterLut, aerialTransmittanceLut, atmosphere, dir, rc, depth, inscatter,
-                        transmittance);
+        sampleAerialLut(aerialInscatterLut, aerialTransmittanceLut, atmosphere, zenithRad, azimuthRad, rc, depth,
+                        inscatter, transmittance);
         color = sky * (1.0f - cloud.a) + cloud.rgb * transmittance + inscatter * cloud.a;
     }
     if ((frame.image.w & FRAME_FLAG_NO_LINEAR_OUTPUT) == 0u)

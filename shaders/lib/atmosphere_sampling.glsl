@@ -268,22 +268,32 @@ vec3 computeSkyRadiance(sampler2D transmittanceLut, sampler2D multiscatterLut, I
 // for (the horizon row depends on it). Below the horizon the LUT holds the air between the eye and the
 // ground (plus the ground itself when the pass ran with SKY_VIEW_FLAG_GROUND); the horizon is a
 // discontinuity that bilinear filtering softens over about one row (< 0.01 degree of zenith angle).
-// The LUT sampler must use REPEAT in u (azimuth wraps at north).
+// The LUT sampler must use REPEAT in u (azimuth wraps at north). sampleSkyViewAt takes the direction's
+// zenith angle, acos(viewDirEnu.z), and enuAzimuth(viewDirEnu) for callers that need them again.
+vec3 sampleSkyViewAt(sampler2D skyViewLut, IN(AtmosphereParams) p, float camRM, float viewZenithRad, float azimuthRad)
+{
+    return atmosphereRgb(texture(skyViewLut, skyViewLutUv(p, camRM, viewZenithRad, azimuthRad)));
+}
+
 vec3 sampleSkyView(sampler2D skyViewLut, IN(AtmosphereParams) p, vec3 viewDirEnu, float camRM)
 {
     float zenith = acos(clamp(viewDirEnu.z, -1.0f, 1.0f));
-    return atmosphereRgb(texture(skyViewLut, skyViewLutUv(p, camRM, zenith, enuAzimuth(viewDirEnu))));
+    return sampleSkyViewAt(skyViewLut, p, camRM, zenith, enuAzimuth(viewDirEnu));
 }
 
-// Radiance of the sun's disk along viewDirEnu: a linearly limb-darkened disk I(m) = 1 - u (1 - m),
-// u = 0.6 (the classic visible-band solar value, e.g. Allen's Astrophysical Quantities), normalised so
-// that the disk integrates to sunIrradiance, times the transmittance from the eye. Zero off the disk or
-// when the ray hits the ground.
-vec3 sunDiskRadiance(sampler2D transmittanceLut, IN(AtmosphereParams) p, vec3 viewDirEnu, float camRM, vec3 sunDirEnu,
-                     vec3 sunIrradiance)
+// Radiance of the sun's disk along viewDirEnu before the air in front of it: a linearly limb-darkened
+// disk I(m) = 1 - u (1 - m), u = 0.6 (the classic visible-band solar value, e.g. Allen's Astrophysical
+// Quantities), normalised so that the disk integrates to sunIrradiance. Zero off the disk or when the
+// ray hits the ground. sunDiskRadiance multiplies in the transmittance from the eye.
+vec3 sunDiskEmission(IN(AtmosphereParams) p, vec3 viewDirEnu, float camRM, vec3 sunDirEnu, vec3 sunIrradiance)
 {
     float angularRadius = p.radii.z;
     float cosAngle = clamp(dot(viewDirEnu, sunDirEnu), -1.0f, 1.0f);
+    // Nearly every pixel is far from the disk: reject it on the cosine alone, before the cross product
+    // and the atan. Twice the radius leaves a wide margin (cos(2r) = 1 - 4e-5 at the sun's 0.27 degrees,
+    // float resolves 6e-8 there), so the pixels near the edge still take the exact angle below.
+    if (cosAngle < cos(2.0f * angularRadius))
+        return vec3(0.0f);
     float sinAngle = length(cross(viewDirEnu, sunDirEnu));
     float angle = atan(sinAngle, cosAngle);
     if (angle >= angularRadius || rayIntersectsGround(p, camRM, viewDirEnu.z))
@@ -292,15 +302,25 @@ vec3 sunDiskRadiance(sampler2D transmittanceLut, IN(AtmosphereParams) p, vec3 vi
     float m = sqrt(max(1.0f - x * x, 0.0f));
     float u = 0.6f;
     float limb = (1.0f - u * (1.0f - m)) / (1.0f - u / 3.0f);
-    vec3 radiance = sunIrradiance * limb / (SKY_PI * angularRadius * angularRadius);
-    return radiance * sampleTransmittance(transmittanceLut, p, camRM, viewDirEnu.z);
+    return sunIrradiance * limb / (SKY_PI * angularRadius * angularRadius);
 }
 
-// Radiance of the moon's disk: its lit part (where the sun shines on the lunar sphere) is uniformly
-// bright (the full moon is nearly flat, Lommel-Seeliger), normalised so that the lit part integrates to
-// moonIrradiance (phase already applied by the caller), times the transmittance from the eye.
-vec3 moonDiskRadiance(sampler2D transmittanceLut, IN(AtmosphereParams) p, vec3 viewDirEnu, float camRM,
-                      vec3 moonDirEnu, vec3 sunDirEnu, vec3 moonIrradiance)
+// The sun's disk seen from the eye: sunDiskEmission times the transmittance from the eye.
+vec3 sunDiskRadiance(sampler2D transmittanceLut, IN(AtmosphereParams) p, vec3 viewDirEnu, float camRM, vec3 sunDirEnu,
+                     vec3 sunIrradiance)
+{
+    vec3 emission = sunDiskEmission(p, viewDirEnu, camRM, sunDirEnu, sunIrradiance);
+    if (emission == vec3(0.0f))
+        return vec3(0.0f);
+    return emission * sampleTransmittance(transmittanceLut, p, camRM, viewDirEnu.z);
+}
+
+// Radiance of the moon's disk before the air in front of it: its lit part (where the sun shines on the
+// lunar sphere) is uniformly bright (the full moon is nearly flat, Lommel-Seeliger), normalised so that
+// the lit part integrates to moonIrradiance (phase already applied by the caller). Zero off the lit
+// disk or when the ray hits the ground.
+vec3 moonDiskEmission(IN(AtmosphereParams) p, vec3 viewDirEnu, float camRM, vec3 moonDirEnu, vec3 sunDirEnu,
+                      vec3 moonIrradiance)
 {
     float angularRadius = p.radii.w;
     float cosAngle = dot(viewDirEnu, moonDirEnu);
@@ -312,7 +332,15 @@ vec3 moonDiskRadiance(sampler2D transmittanceLut, IN(AtmosphereParams) p, vec3 v
     if (dot(normal, sunDirEnu) <= 0.0f)
         return vec3(0.0f);
     float litFraction = max(0.5f * (1.0f - dot(sunDirEnu, moonDirEnu)), 1e-3f);
-    vec3 radiance = moonIrradiance / (SKY_PI * angularRadius * angularRadius * litFraction);
-    return radiance * sampleTransmittance(transmittanceLut, p, camRM, viewDirEnu.z);
+    return moonIrradiance / (SKY_PI * angularRadius * angularRadius * litFraction);
 }
 
+// The moon's disk seen from the eye: moonDiskEmission times the transmittance from the eye.
+vec3 moonDiskRadiance(sampler2D transmittanceLut, IN(AtmosphereParams) p, vec3 viewDirEnu, float camRM,
+                      vec3 moonDirEnu, vec3 sunDirEnu, vec3 moonIrradiance)
+{
+    vec3 emission = moonDiskEmission(p, viewDirEnu, camRM, moonDirEnu, sunDirEnu, moonIrradiance);
+    if (emission == vec3(0.0f))
+        return vec3(0.0f);
+    return emission * sampleTransmittance(transmittanceLut, p, camRM, viewDirEnu.z);
+}

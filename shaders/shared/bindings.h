@@ -11,6 +11,13 @@
 #define WORKGROUP_SIZE_2D 8
 // 4x4x4 = 64 invocations for 3D noise generation, for the same reason.
 #define WORKGROUP_SIZE_3D 4
+// Pixels per axis of the quad each reconstruct invocation handles (shaders/clouds/reconstruct.comp.glsl):
+// 1 or 2 (a 2x2 quad lies inside one march block for every block size, so its pixels share one fresh
+// neighbourhood). Measured on an H200 (BENCHMARKS.md), 1 is faster in still views (1080p clear 0.027
+// against 0.032 ms, cirrus 0.032 against 0.039) and at 4K at 250 m/s within 5% either way (cirrus
+// 0.202 against 0.193 ms, clear 0.091 against 0.111); on lavapipe at 640x360 1 is faster too (cirrus
+// 7.4 against 8.7 ms).
+#define RECONSTRUCT_QUAD_PX 1
 
 // Noise texture sizes (DESIGN §3: Perlin-Worley 128^3 RGBA8, Worley 32^3, 2D curl noise).
 #define BASE_NOISE_SIZE 128

@@ -23,4 +23,11 @@ cmake --build "$BUILD/baseline" -j2
 cp "$SHARED"/baseline/{CMakeLists.txt,cloudprobe.cpp,cloud.comp} "$BUILD/baseline/cloud.comp.spv" .gpu/baseline/
 strip -o .gpu/prebuilt/sky-bench "$BUILD/skyservice/sky-bench"
 strip -o .gpu/prebuilt/cloudprobe "$BUILD/baseline/cloudprobe"
+# Optional builds for device_run.sh's builds mode: SKY_BENCH_BUILDS="label=DIR ...", each DIR holding a
+# sky-bench and its spirv/ (copied out of a build folder, e.g. of the main branch).
+for b in ${SKY_BENCH_BUILDS:-}; do
+  mkdir -p ".gpu/builds/${b%%=*}"
+  strip -o ".gpu/builds/${b%%=*}/sky-bench" "${b#*=}/sky-bench"
+  cp -r "${b#*=}/spirv" ".gpu/builds/${b%%=*}/spirv"
+done
 du -sh .gl .gpu

@@ -6,19 +6,24 @@
 # the baseline there (falling back to the binaries built on the dev machine), then times both at
 # 1920x1080, 640x360 and 3840x2160 and writes JSON, the baseline's log and an SM-clock log to $OUT.
 set -u
-ROOT=$PWD; G=$ROOT/.gpu; P=/tmp/deps
+# SKY_BENCH_GL_DIR and SKY_BENCH_GPU_DIR point elsewhere than .gl/ and .gpu/ (e.g. folders carried from
+# another checkout: the device tool copies the session's main checkout, not a worktree).
+ROOT=$PWD; G=${SKY_BENCH_GPU_DIR:-$ROOT/.gpu}; GL=${SKY_BENCH_GL_DIR:-$ROOT/.gl}; P=/tmp/deps
 exec > >(tee "$OUT/log.txt") 2>&1
 T0=$(date +%s); el() { echo "[t+$(( $(date +%s) - T0 ))s] $*"; }
-for f in .gl/*.deb; do dpkg -x "$f" /; done; ldconfig
+for f in "$GL"/*.deb; do dpkg -x "$f" /; done; ldconfig
 mkdir -p $P; for f in "$G"/debs/*.deb; do dpkg -x "$f" $P; done
 export LD_LIBRARY_PATH=$P/usr/lib/x86_64-linux-gnu
 export SKY_SPIRV_DIR=$G/spirv
 el "unpacked"; uname -a; nproc; (cmake --version; g++ --version) | grep -i "version\|g++"
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm,power.draw,temperature.gpu --format=csv
 
-# Build there (as GPU.md asks); the carried binaries are the fallback.
+# Build there (as GPU.md asks); the carried binaries are the fallback. SKY_BENCH_DEVICE_BUILD=0 skips
+# the build of sky-bench (minutes of device time) and times the binaries built on the dev machine.
 BENCH=$G/prebuilt/sky-bench; PROBE=$G/prebuilt/cloudprobe
-if timeout 60 cmake -S "$ROOT" -B /tmp/build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKY_BUILD_TESTS=OFF \
+if [ "${SKY_BENCH_DEVICE_BUILD:-1}" = 0 ]; then
+  el "no device build: using the carried sky-bench"
+elif timeout 60 cmake -S "$ROOT" -B /tmp/build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKY_BUILD_TESTS=OFF \
      -DSKY_BUILD_INGEST=OFF -DSKY_PREBUILT_SPIRV_DIR=$G/spirv -DVulkan_INCLUDE_DIR=$G/include \
      -DVulkan_LIBRARY=/usr/lib/x86_64-linux-gnu/libvulkan.so.1 -DCMAKE_PREFIX_PATH=$P/usr \
      -DCMAKE_MODULE_PATH=$P/usr/share/cmake/geographiclib "-DCMAKE_CXX_FLAGS=-isystem $P/usr/include" \
@@ -66,7 +71,35 @@ base() {  # W H
   timeout 120 $PROBE --spv $G/baseline/cloud.comp.spv --width $1 --height $2 --frames 100 --out /tmp/base-$1x$2 \
     2>&1 | tee -a "$OUT/baseline.txt" | grep -i "using device\|driver\|FULL\|1/16\|timestamp"
 }
-MODE=${SKY_BENCH_MODE:-full}  # full | reprojected | both (both: reprojected at 1080p and 4K, then full at 1080p) | ab
+MODE=${SKY_BENCH_MODE:-full}  # full | reprojected | both (both: reprojected at 1080p and 4K, then full at 1080p) | ab | builds
+if [ "$MODE" = builds ]; then
+  # A/B of sky-bench builds in one call (the main branch against a change of a shader and its dispatch):
+  # each .gpu/builds/<label>/ holds a sky-bench and its SPIR-V (device_prepare.sh, SKY_BENCH_BUILDS).
+  # Reprojected mode, 100 frames after 20 warm-up, at each of SKY_BENCH_AB_SIZES (default 1920x1080),
+  # SKY_BENCH_SCENES (default all), and each option set of SKY_BENCH_VARIANTS (';'-separated, as in ab
+  # mode); the builds take turns inside each size and option set, so that clock drift hits them alike.
+  # Writes bench-<label>-<W>x<H>-v<i>.json, then the baseline at each size.
+  IFS=';' read -ra VARIANTS <<< "${SKY_BENCH_VARIANTS:- }"
+  for size in ${SKY_BENCH_AB_SIZES:-1920x1080}; do
+    w=${size%x*}; h=${size#*x}; i=0
+    for v in "${VARIANTS[@]}"; do
+      for dir in "$G"/builds/*/; do
+        label=$(basename "$dir")
+        el "sky-bench $label ${w}x$h v$i: $v"
+        # shellcheck disable=SC2086
+        SKY_SPIRV_DIR=$dir/spirv timeout ${SKY_BENCH_RUN_LIMIT_S:-60} "$dir/sky-bench" --scene "${SKY_BENCH_SCENES:-all}" \
+          --width $w --height $h --frames 100 --warmup 20 --mode reprojected --device NVIDIA \
+          --json "$OUT/bench-$label-${w}x$h-v$i.json" $v | grep -v "MiB$"
+        el "rc=${PIPESTATUS[0]}"
+      done
+      i=$((i + 1))
+    done
+  done
+  for size in ${SKY_BENCH_AB_SIZES:-1920x1080}; do base ${size%x*} ${size#*x}; done
+  kill $CLK
+  el "done"
+  exit 0
+fi
 if [ "$MODE" = ab ]; then
   # A/B of sky-bench options in one call: SKY_BENCH_VARIANTS holds option sets separated by ';' (e.g.
   # "--march-threads 1;--march-threads 4"); each runs in SKY_BENCH_AB_MODES (default: reprojected full)

@@ -94,7 +94,10 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
     if (reprojected)
     {
         const uint32_t prev = r.reprojection.current;
-        dispatch(r.ctx, cmd, r.reconstructProgram, request.width, request.height, 1, nullptr, 0,
+        // One invocation per quad of RECONSTRUCT_QUAD_PX^2 pixels (shaders/shared/bindings.h).
+        const uint32_t quadsX = (request.width + RECONSTRUCT_QUAD_PX - 1) / RECONSTRUCT_QUAD_PX;
+        const uint32_t quadsY = (request.height + RECONSTRUCT_QUAD_PX - 1) / RECONSTRUCT_QUAD_PX;
+        dispatch(r.ctx, cmd, r.reconstructProgram, quadsX, quadsY, 1, nullptr, 0,
                  {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.freshCloudImage), DescriptorInfo(r.freshDepthImage),
                   DescriptorInfo(r.history[prev]), DescriptorInfo(r.history[next])});
         computeBarrier(cmd);
