@@ -48,6 +48,7 @@ std::map<std::string, Key> keys()
         {"lighting.cone_step_m", real(&QualitySettings::coneStepM, 1, 2000)},
         {"lighting.full_cone_samples", u32(&QualitySettings::fullConeSamples, 0, 6)},
         {"lighting.light_volume_texel_m", real(&QualitySettings::lightVolumeTexelM, 0, 5000)},
+        {"lighting.light_volume_min_rays", u32(&QualitySettings::lightVolumeMinRays, 0, 4294967295.0)},
         {"lighting.ambient_strength", real(&QualitySettings::ambientStrength, 0, 10)},
         {"shape.extinction_per_m", real(&QualitySettings::extinctionPerM, 1e-4, 1)},
         {"shape.detail_erosion", real(&QualitySettings::detailErosion, 0, 1)},

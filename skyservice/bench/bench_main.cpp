@@ -58,6 +58,7 @@ struct BenchOptions
     int lightSamples = -1;  ///< < 0: the renderer's default
     int fullConeSamples = -1;
     double lightVolumeTexelM = -1;  ///< < 0: the renderer's default; 0: no light volume
+    int64_t lightVolumeMinRays = -1;  ///< < 0: the renderer's default
     double detailFadeStartM = -1, detailFadeEndM = -1;
     bool noDetail = false;
     uint32_t gpuFrames = 1;
@@ -85,7 +86,8 @@ nlohmann::json qualityJson(const QualitySettings& q)
             {"detailNoisePeriodM", q.detailNoisePeriodM}, {"extinctionPerM", q.extinctionPerM},
             {"coneStepM", q.coneStepM}, {"lightLodDistanceM", q.lightLodDistanceM},
             {"fullConeSamples", q.fullConeSamples}, {"detailFadeStartM", q.detailFadeStartM},
-            {"detailFadeEndM", q.detailFadeEndM}, {"lightVolumeTexelM", q.lightVolumeTexelM}};
+            {"detailFadeEndM", q.detailFadeEndM}, {"lightVolumeTexelM", q.lightVolumeTexelM},
+            {"lightVolumeMinRays", q.lightVolumeMinRays}};
 }
 
 // Box-filters an image down by an integer factor (contact sheet tiles only).
@@ -219,6 +221,8 @@ int runBench(const BenchOptions& o)
         quality.fullConeSamples = uint32_t(o.fullConeSamples);
     if (o.lightVolumeTexelM >= 0)
         quality.lightVolumeTexelM = o.lightVolumeTexelM;
+    if (o.lightVolumeMinRays >= 0)
+        quality.lightVolumeMinRays = uint32_t(o.lightVolumeMinRays);
     if (o.detailFadeStartM >= 0)
         quality.detailFadeStartM = o.detailFadeStartM;
     if (o.detailFadeEndM >= 0)
@@ -324,6 +328,9 @@ int main(int argc, char** argv)
     app.add_option("--light-volume-texel", o.lightVolumeTexelM,
                    "Light volume texel size (m; 0: no light volume, every cone sample marched)")
         ->check(CLI::Range(0.0, 5000.0));
+    app.add_option("--light-volume-min-rays", o.lightVolumeMinRays,
+                   "Frames marching fewer rays draw no light volume (default: the renderer's)")
+        ->check(CLI::Range(int64_t(0), int64_t(4294967295)));
     app.add_option("--detail-fade-start", o.detailFadeStartM, "Detail erosion fades out from this distance (m)")
         ->check(CLI::Range(0.0, 1e7));
     app.add_option("--detail-fade-end", o.detailFadeEndM, "... to this distance (m)")->check(CLI::Range(0.0, 1e7));

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/frame_setup.h"
 
-#include "skyservice/render/light_volume.h"
-
 #include "skyservice/sky/atmosphere.h"
 
 #include <algorithm>
@@ -142,7 +140,6 @@ FrameParams makeFrameParams(const FrameInputs& in)
                       float(std::max(q.lightLodDistanceM, 0.0)), float(q.fullConeSamples));
     f.worldJitter = vec4(float(2.0 * std::tan(req.fovYDeg * M_PI / 360.0) / double(req.height)), 0.0f, 0.0f, 0.0f);
     f.reprojection = uvec4(1u, 0u, 0u, 0u);  // full resolution unless the renderer's reprojected path says otherwise
-    placeLightVolume(q, f);
     return f;
 }
 

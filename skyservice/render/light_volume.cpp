@@ -30,7 +30,10 @@ void placeLightVolume(const QualitySettings& quality, FrameParams& frame)
     frame.lightVolume = vec4(0.0f);
     const uint32_t samples = std::min(quality.lightSamples, 6u);
     const bool hasVolumetricCloud = frame.shell.y > frame.shell.x;
-    if (quality.lightVolumeTexelM <= 0.0 || quality.fullConeSamples >= samples || !hasVolumetricCloud)
+    const uint32_t block = std::max(frame.reprojection.x, 1u);
+    const uint64_t rays = uint64_t((frame.image.x + block - 1) / block) * uint64_t((frame.image.y + block - 1) / block);
+    if (quality.lightVolumeTexelM <= 0.0 || quality.fullConeSamples >= samples || !hasVolumetricCloud ||
+        rays < quality.lightVolumeMinRays)
         return;
     // Snapped in double: the corner is a whole number of texels on the window plane, so that frames
     // (and display channels) with eyes in the same texel build the same volume.

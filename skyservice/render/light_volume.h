@@ -34,7 +34,8 @@ SkyStatus createLightVolume(Renderer& r);
  * Fills frame.lightVolume: the volume's corner on the window plane, snapped to whole texels so that the
  * texels stay fixed to the ground while the eye moves in a window, and its texel size; z = 0 (no volume)
  * when the quality turns it off, when no cone sample is cheap (nothing to precompute) or when the frame
- * has no volumetric cloud.
+ * has no volumetric cloud, or marches fewer rays than quality.lightVolumeMinRays (frame.image.xy and the
+ * march block frame.reprojection.x must be final).
  **********************************************************************/
 void placeLightVolume(const QualitySettings& quality, FrameParams& frame);
 

@@ -293,6 +293,7 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
         r.reprojection.lastDropReason = useHistory ? "" : why;
         fillReprojectionParams(params, r.reprojection, request, camera, useHistory);
     }
+    placeLightVolume(quality, params);  // after the march block is known: it counts the rays
     result.cpuSetupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
 
     // Accumulation: each frame has new march jitter (frame index) and a sub-pixel offset (Halton 2,3);

@@ -118,6 +118,7 @@ TEST(LightVolumePlacement, CornerIsOnWholeTexelsAroundTheEye)
 {
     QualitySettings q;
     q.lightVolumeTexelM = 160.0;
+    q.lightVolumeMinRays = 0;
     for (float offset : {0.0f, 79.9f, 80.1f, -1234.5f, 5000.0f})
     {
         FrameParams f{};
@@ -138,12 +139,16 @@ TEST(LightVolumePlacement, CornerIsOnWholeTexelsAroundTheEye)
     }
 }
 
-// No volume when there is nothing to hold: no volumetric cloud, every cone sample detailed, turned off.
+// No volume when there is nothing to hold (no volumetric cloud, every cone sample detailed), when it is
+// turned off, and when the frame marches too few rays for its build to pay (1920x1080 reprojected marches
+// 130 320 rays, 640x360 reprojected 14 400).
 TEST(LightVolumePlacement, AbsentWhenItWouldHoldNothing)
 {
     QualitySettings q;
     FrameParams f{};
     f.shell = vec4(1000.0f, 3000.0f, 0.0f, 0.0f);
+    f.image = uvec4(1920u, 1080u, 0u, 0u);
+    f.reprojection = uvec4(4u, 0u, 0u, 0u);
     placeLightVolume(q, f);
     EXPECT_GT(f.lightVolume.z, 0.0f) << "defaults: a volume";
     FrameParams empty = f;
@@ -158,4 +163,11 @@ TEST(LightVolumePlacement, AbsentWhenItWouldHoldNothing)
     off.lightVolumeTexelM = 0.0;
     placeLightVolume(off, f);
     EXPECT_EQ(f.lightVolume.z, 0.0f) << "turned off";
+    FrameParams small = f;
+    small.image = uvec4(640u, 360u, 0u, 0u);
+    placeLightVolume(q, small);
+    EXPECT_EQ(small.lightVolume.z, 0.0f) << "640x360 reprojected: 14 400 rays";
+    small.reprojection.x = 1u;
+    placeLightVolume(q, small);
+    EXPECT_GT(small.lightVolume.z, 0.0f) << "640x360 full: 230 400 rays";
 }
