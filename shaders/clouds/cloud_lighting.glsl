@@ -142,7 +142,10 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             }
             continue;
         }
-        DensitySample ds = cloudDensity(p, false, t);
+        // Deep in a cloud, where little of what lies behind reaches the eye, the base shape without detail
+        // erosion (frame.detailLod.x: the view transmittance below which; 0: never).
+        bool deep = transmittance < frame.detailLod.x;
+        DensitySample ds = cloudDensity(p, deep, t);
         ++fullSamples;
         if (ds.density <= 0.0f)
         {
@@ -168,7 +171,7 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             }
             t = hi;
             p = dir * t;
-            ds = cloudDensity(p, false, t);
+            ds = cloudDensity(p, deep, t);
             lastEmptyT = t;
             if (ds.density <= 0.0f)
                 continue;

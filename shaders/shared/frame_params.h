@@ -61,6 +61,9 @@ struct FrameParams
     // The light volume (light_volume.h): xy: window-plane position (m) of its corner texel's corner; z:
     // texel size (m), 0 when there is none this frame; w: unused (its tail starts after marchLod.w samples).
     vec4 lightVolume;
+    // x: view samples behind a transmittance below this take the base shape without detail erosion (0:
+    // never; QualitySettings::detailMinTransmittance); yzw: unused.
+    vec4 detailLod;
 };
 
 // frame flags

@@ -52,6 +52,7 @@ std::map<std::string, Key> keys()
         {"lighting.ambient_strength", real(&QualitySettings::ambientStrength, 0, 10)},
         {"shape.extinction_per_m", real(&QualitySettings::extinctionPerM, 1e-4, 1)},
         {"shape.detail_erosion", real(&QualitySettings::detailErosion, 0, 1)},
+        {"shape.detail_min_transmittance", real(&QualitySettings::detailMinTransmittance, 0, 1)},
         {"shape.detail", flag(&QualitySettings::detail)},
         {"shape.high_cloud", flag(&QualitySettings::highCloud)},
         {"noise.seed", u32(&QualitySettings::noiseSeed, 0, 4294967295.0)},

@@ -59,6 +59,7 @@ struct BenchOptions
     int fullConeSamples = -1;
     double lightVolumeTexelM = -1;  ///< < 0: the renderer's default; 0: no light volume
     int64_t lightVolumeMinRays = -1;  ///< < 0: the renderer's default
+    double detailMinTransmittance = -1;  ///< < 0: the renderer's default
     double detailFadeStartM = -1, detailFadeEndM = -1;
     bool noDetail = false;
     uint32_t gpuFrames = 1;
@@ -87,7 +88,7 @@ nlohmann::json qualityJson(const QualitySettings& q)
             {"coneStepM", q.coneStepM}, {"lightLodDistanceM", q.lightLodDistanceM},
             {"fullConeSamples", q.fullConeSamples}, {"detailFadeStartM", q.detailFadeStartM},
             {"detailFadeEndM", q.detailFadeEndM}, {"lightVolumeTexelM", q.lightVolumeTexelM},
-            {"lightVolumeMinRays", q.lightVolumeMinRays}};
+            {"lightVolumeMinRays", q.lightVolumeMinRays}, {"detailMinTransmittance", q.detailMinTransmittance}};
 }
 
 // Box-filters an image down by an integer factor (contact sheet tiles only).
@@ -223,6 +224,8 @@ int runBench(const BenchOptions& o)
         quality.lightVolumeTexelM = o.lightVolumeTexelM;
     if (o.lightVolumeMinRays >= 0)
         quality.lightVolumeMinRays = uint32_t(o.lightVolumeMinRays);
+    if (o.detailMinTransmittance >= 0)
+        quality.detailMinTransmittance = o.detailMinTransmittance;
     if (o.detailFadeStartM >= 0)
         quality.detailFadeStartM = o.detailFadeStartM;
     if (o.detailFadeEndM >= 0)
@@ -331,6 +334,9 @@ int main(int argc, char** argv)
     app.add_option("--light-volume-min-rays", o.lightVolumeMinRays,
                    "Frames marching fewer rays draw no light volume (default: the renderer's)")
         ->check(CLI::Range(int64_t(0), int64_t(4294967295)));
+    app.add_option("--detail-min-transmittance", o.detailMinTransmittance,
+                   "View samples behind a transmittance below this skip the detail erosion (0: never)")
+        ->check(CLI::Range(0.0, 1.0));
     app.add_option("--detail-fade-start", o.detailFadeStartM, "Detail erosion fades out from this distance (m)")
         ->check(CLI::Range(0.0, 1e7));
     app.add_option("--detail-fade-end", o.detailFadeEndM, "... to this distance (m)")->check(CLI::Range(0.0, 1e7));
