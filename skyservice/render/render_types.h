@@ -33,7 +33,7 @@ struct QualitySettings
     /// H200 at 1920x1080 reprojected (130 000 rays): -6..-27 %.
     uint32_t lightVolumeMinRays = 50000;
     /// View samples behind a view transmittance below this take the base shape without detail erosion
-    /// (0: never): there little of the sample reaches the eye. H200, 1080p reprojected: -4..-6 % per frame
+    /// (0: never): there little of the sample reaches the eye. H200, 1080p reprojected: -4..-7 % per frame
     /// in the volumetric scenes at 0.1 (-7..-10 % at 0.2); pictures 47-56 dB of those without it at 0.1
     /// (41-50 dB at 0.2), tests/gpu/test_render.cpp.
     double detailMinTransmittance = 0.1;
