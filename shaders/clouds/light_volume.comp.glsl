@@ -8,7 +8,6 @@
 #include "shaders/shared/frame_params.h"
 #include "shaders/shared/weather_window.h"
 #include "shaders/shared/light_volume.h"
-#include "shaders/lib/shell.glsl"
 #include "shaders/lib/cloud_shape.glsl"
 #include "shaders/lib/window_warp.glsl"
 

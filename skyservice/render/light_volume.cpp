@@ -18,11 +18,7 @@ SkyStatus createLightVolume(Renderer& r)
     d.format = VK_FORMAT_R16_SFLOAT;  // transmittance: half floats keep 11 bits down to 6e-5, less to 6e-8
     d.width = d.height = LIGHT_VOLUME_SIZE;
     d.depth = LIGHT_VOLUME_LEVELS;
-    SKY_TRY(createImage(r.ctx, r.memory, r.lightVolume, d, "light volume"));
-    OneShot shot;
-    SKY_TRY(beginOneShot(r.ctx, shot));
-    transitionImage(shot.cmd, r.lightVolume, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-    return endOneShot(r.ctx, shot);
+    return createImage(r.ctx, r.memory, r.lightVolume, d, "light volume");
 }
 
 void placeLightVolume(const QualitySettings& quality, FrameParams& frame)
@@ -44,6 +40,11 @@ void placeLightVolume(const QualitySettings& quality, FrameParams& frame)
     frame.lightVolume = vec4(float(cornerX), float(cornerY), float(texelM), 0.0f);
 }
 
+namespace
+{
+
+// `frame` with the camera axes, image size, frame index, sub-pixel jitter and reprojection fields
+// zeroed: what the volume's build does not read.
 FrameParams lightVolumeInputs(const FrameParams& frame)
 {
     FrameParams f = frame;
@@ -56,6 +57,8 @@ FrameParams lightVolumeInputs(const FrameParams& frame)
     f.worldJitter = vec4(0.0f);
     return f;
 }
+
+}  // namespace
 
 void recordLightVolume(Renderer& r, VkCommandBuffer cmd, const FrameParams& frame)
 {

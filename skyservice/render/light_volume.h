@@ -14,7 +14,7 @@ namespace sky
 struct Renderer;
 
 /// What the volume was built from: the frame uniforms less the fields that only aim the camera or
-/// time-stamp the frame (lightVolumeInputs), and the weather window's key. A frame with the same inputs
+/// time-stamp the frame, and the weather window's key. A frame with the same inputs
 /// (a still view, the frames of an accumulation, a paused simulator) reuses the volume: bit for bit what
 /// it would build.
 struct LightVolumeKey
@@ -24,10 +24,8 @@ struct LightVolumeKey
     bool valid = false;
 };
 
-/// `frame` with the camera axes, image size, frame index, sub-pixel jitter and reprojection fields zeroed.
-FrameParams lightVolumeInputs(const FrameParams& frame);
-
-/// Creates the volume image (LIGHT_VOLUME_SIZE^2 x LIGHT_VOLUME_LEVELS, R16F: 0.44 MB), layout GENERAL.
+/// Creates the volume image (LIGHT_VOLUME_SIZE^2 x LIGHT_VOLUME_LEVELS, R16F: 0.44 MB), layout UNDEFINED
+/// (the renderer's start-up command buffer makes it GENERAL with its other images).
 SkyStatus createLightVolume(Renderer& r);
 
 /**

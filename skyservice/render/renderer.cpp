@@ -44,7 +44,7 @@ SkyStatus generateNoise(Renderer& r, uint32_t seed)
     SKY_TRY(beginOneShot(r.ctx, shot));
     vkCmdResetQueryPool(shot.cmd, r.timestamps, 0, kTsCount);
     vkCmdWriteTimestamp(shot.cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r.timestamps, 0);
-    for (Image* img : {&r.baseNoise, &r.detailNoise, &r.curlNoise, &r.linearStandIn, &r.historyStandIn})
+    for (Image* img : {&r.baseNoise, &r.detailNoise, &r.curlNoise, &r.linearStandIn, &r.historyStandIn, &r.lightVolume})
         transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     NoisePush push = {seed, BASE_NOISE_SIZE, 0, 0};
     dispatch(r.ctx, shot.cmd, r.baseNoiseProgram, BASE_NOISE_SIZE, BASE_NOISE_SIZE, BASE_NOISE_SIZE, push,

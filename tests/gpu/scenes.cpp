@@ -293,6 +293,17 @@ QualitySettings reprojectedQuality()
     return q;
 }
 
+WeatherSnapshot deckBelowWeather() { return uniformLayer(0.8f, CloudType::Stratocumulus, 900.0f, 1900.0f); }
+
+ViewRequest deckFromAboveView()
+{
+    ViewRequest v = lookUp(45.0, 7.0, 4000.0, -45.0, "2026-06-21T12:00:00Z");
+    v.width = 160;
+    v.height = 90;
+    v.unixTimeS = timeOfSunElevation(45.0, 7.0, "2026-06-21T12:00:00Z", 30.0);
+    return v;
+}
+
 WeatherSnapshot reprojectionWeather() { return uniformLayer(0.4f, CloudType::Cumulus, 1200.0f, 3000.0f); }
 
 ViewRequest reprojectionView()

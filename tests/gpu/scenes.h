@@ -102,4 +102,11 @@ QualitySettings reprojectedQuality();
 WeatherSnapshot reprojectionWeather();
 ViewRequest reprojectionView();
 
+// --- March lighting (tests/gpu/test_light_volume.cpp, test_render.cpp) ---
+
+/// A stratocumulus deck (coverage 0.8, 900-1900 m) seen from 4000 m, 45 degrees down, at 160x90 with
+/// the sun at 30 degrees: thick cloud filling the image, lit from above.
+WeatherSnapshot deckBelowWeather();
+ViewRequest deckFromAboveView();
+
 }  // namespace sky::testscenes

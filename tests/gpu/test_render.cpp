@@ -117,11 +117,8 @@ TEST_F(GpuRender, SunSideOfACumulusIsBrighterThanItsShadowSide)
 // every sample (measured 47.0 dB; 41.2 at 0.2, 37.8 at 0.3), and differs from it (the rule is in use).
 TEST_F(GpuRender, DeepSamplesWithoutDetailChangeLittle)
 {
-    WeatherSnapshot w = uniformLayer(0.8f, CloudType::Stratocumulus, 900.0f, 1900.0f);
-    ViewRequest v = lookUp(45.0, 7.0, 4000.0, -45.0, "2026-06-21T12:00:00Z");
-    v.width = 160;
-    v.height = 90;
-    v.unixTimeS = timeOfSunElevation(45.0, 7.0, "2026-06-21T12:00:00Z", 30.0);
+    WeatherSnapshot w = deckBelowWeather();
+    ViewRequest v = deckFromAboveView();
     QualitySettings everySample = testQuality();
     everySample.detailMinTransmittance = 0.0;
     RenderResult eroded = render(w, v, everySample);
