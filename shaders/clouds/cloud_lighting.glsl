@@ -15,52 +15,93 @@ vec3 keyLightAt(vec3 p, vec3 lightDir)
     return keyLightIrradiance() * sampleTransmittance(transmittanceLut, atmosphere, r, muLight);
 }
 
-// Optical depth toward the light: 6 samples in a widening cone, then one long sample at 3x the cone
-// length (Schneider 2015); cheap density once the path is already dense, and beyond the first
-// frame.marchLod.w samples. Near the eye those cheap far samples come precomputed from the light volume
-// (shaders/shared/light_volume.h): one fetch instead of 5 density lookups. Beyond frame.marchLod.z metres
-// (0: never) 3 cheap samples cover the same cone: there a pixel spans tens of metres and the view
-// samples are far apart.
-float lightOpticalDepth(vec3 p, vec3 lightDir, float distanceM)
+// The light cone of one lit view sample: optical depth toward the light from 6 samples in a widening
+// cone, then one long sample at 3x the cone length (Schneider 2015); cheap density once the path is
+// already dense, and beyond the first frame.marchLod.w samples. Near the eye those cheap far samples come
+// precomputed from the light volume (shaders/shared/light_volume.h): one fetch instead of 5 density
+// lookups. Beyond frame.marchLod.z metres (0: never) 3 cheap samples cover the same cone: there a pixel
+// spans tens of metres and the view samples are far apart. The march takes the cone's density lookups
+// one per loop iteration (marchClouds says why), so the cone is a small state.
+struct LightCone
 {
-    float stepM = frame.phaseTerms.w;
+    vec3 origin;           // the lit point (ENU m)
+    float stepM;           // length of the first cone step; step i is (i + 1) x stepM
+    uint next;             // the next cone sample (0-based); == live: the long sample, unless fromVolume
+    uint live;             // cone samples marched here
+    uint detailed;         // of which the first this many may take the detailed density
+    float coveredM;        // the length the cone steps so far cover
+    float depth;           // relative density x metres so far
+    float tailTransmittance;  // the light volume's transmittance of the rest; < 0: no volume here
+};
+
+LightCone beginLightCone(vec3 p, float distanceM)
+{
+    LightCone c;
+    c.origin = p;
+    c.stepM = frame.phaseTerms.w;
     uint samples = min(frame.march.y, 6u);
     bool coarse = frame.marchLod.z > 0.0f && distanceM > frame.marchLod.z;
     if (coarse && samples > 3u)
     {
         // Steps i = 1..n of stepM * i cover stepM * n(n+1)/2: the same length with 3 samples.
-        stepM *= float(samples * (samples + 1u)) / 12.0f;
+        c.stepM *= float(samples * (samples + 1u)) / 12.0f;
         samples = 3u;
     }
-    uint fullSamples = coarse ? 0u : uint(frame.marchLod.w);
-    uint liveSamples = samples;
-    vec3 uvw = vec3(0.0f);
-    bool fromVolume = false;
-    if (!coarse && fullSamples < samples)
+    c.detailed = coarse ? 0u : uint(frame.marchLod.w);
+    c.live = samples;
+    c.tailTransmittance = -1.0f;
+    if (!coarse && c.detailed < samples)
     {
         float h;
         vec2 mapPosM = weatherMapPosition(p, h);
-        fromVolume = lightVolumeCoordinates(windowPlanePosition(mapPosM), h, uvw);
-        if (fromVolume)
-            liveSamples = fullSamples;
+        vec3 uvw;
+        if (lightVolumeCoordinates(windowPlanePosition(mapPosM), h, uvw))
+        {
+            c.live = c.detailed;
+            c.tailTransmittance = textureLod(lightVolume, uvw, 0.0f).x;
+        }
     }
-    float depth = 0.0f;
-    float t = 0.0f;
-    for (uint i = 0u; i < liveSamples; ++i)
+    c.next = 0u;
+    c.coveredM = 0.0f;
+    c.depth = 0.0f;
+    return c;
+}
+
+// True when the cone has no density lookup left (its optical depth is final).
+bool lightConeDone(LightCone c)
+{
+    return c.next > c.live || (c.next == c.live && c.tailTransmittance >= 0.0f);
+}
+
+// Where the cone's next density lookup goes, whether it is cheap, and the metres it stands for.
+vec3 lightConeSamplePoint(LightCone c, vec3 lightDir, out bool cheap, out float lengthM)
+{
+    if (c.next < c.live)
     {
-        float len = stepM * float(i + 1u);
-        t += len;
-        bool cheap = i >= fullSamples || depth * frame.cloudLook.x > 0.3f;
-        depth += cloudDensity(coneSamplePoint(p, lightDir, i, t, len), cheap, distanceM).density * len;
+        lengthM = c.stepM * float(c.next + 1u);
+        cheap = c.next >= c.detailed || c.depth * frame.cloudLook.x > 0.3f;
+        return coneSamplePoint(c.origin, lightDir, c.next, c.coveredM + lengthM, lengthM);
     }
-    if (fromVolume)
-    {
-        // The volume holds transmittance (light_volume.h says why); 1e-7: below it, no light reaches.
-        float tailTransmittance = textureLod(lightVolume, uvw, 0.0f).x;
-        return depth * frame.cloudLook.x - log(max(tailTransmittance, 1e-7f));
-    }
-    depth += cloudDensity(p + lightDir * (3.0f * t), true, distanceM).density * t;
-    return depth * frame.cloudLook.x;
+    lengthM = c.coveredM;
+    cheap = true;
+    return c.origin + lightDir * (3.0f * c.coveredM);
+}
+
+void lightConeAdd(inout LightCone c, float density, float lengthM)
+{
+    c.depth += density * lengthM;
+    if (c.next < c.live)
+        c.coveredM += lengthM;
+    ++c.next;
+}
+
+// Optical depth toward the light of a finished cone.
+float lightConeOpticalDepth(LightCone c)
+{
+    // The volume holds transmittance (light_volume.h says why); 1e-7: below it, no light reaches.
+    if (c.tailTransmittance >= 0.0f)
+        return c.depth * frame.cloudLook.x - log(max(c.tailTransmittance, 1e-7f));
+    return c.depth * frame.cloudLook.x;
 }
 
 // Light scattered toward the eye per unit incident radiance: multiple-scattering octaves (Wrenninge
@@ -95,9 +136,19 @@ vec3 ambientLight(float heightFraction)
     return frame.cloudLook.z * (sky + ground);
 }
 
+// What a march iteration's one density lookup is for.
+const int MARCH_SEARCH = 0;   // cheap samples with double steps until a cloud is hit
+const int MARCH_FULL = 1;     // full view samples inside a cloud
+const int MARCH_BISECT = 2;   // finding the surface of a cloud entered with a long step
+const int MARCH_CONE = 3;     // the light cone of a lit view sample
+
 // March from tEnter to tExit: cheap samples with double steps until a cloud is hit, full samples inside,
 // back to cheap after 6 empty full samples; step length grows with distance; blue-noise start offset;
 // stop when the transmittance falls below 0.01 (DESIGN §3 "March").
+// Every iteration takes exactly one density lookup, whichever part of the march it serves (a state:
+// search, full view sample, surface bisection, light cone). The 32 rays of a GPU subgroup are in
+// different parts at once; written as nested loops, the subgroup ran each part's lookups one after the
+// other (a lane in the light cone made the others wait 2-7 lookups), here they share one.
 void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout float transmittance,
                  inout float depthWeighted, inout float depthWeight)
 {
@@ -116,82 +167,150 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
     ivec2 jitterTexel = worldJitterTexel(toNoiseFrame(dir), frame.worldJitter.x);
     float jitter = fract(texelFetch(blueNoise, jitterTexel, 0).x + 0.61803399f * float(frame.image.z));
     float t = tEnter + jitter * max(baseStep, tEnter * growth);
-    bool full = false;
+    int state = MARCH_SEARCH;
     int emptyFull = 0;
+    // The budget counts full samples; cheap samples (no detail, no light march) may take as many again.
+    uint viewSamples = 0u;
     uint fullSamples = 0u;
+    float lastEmptyT = tEnter;  // the last sample that found no cloud
+    bool afterEmpty = true;     // the view sample before this one found no cloud
+    float bisectLo = 0.0f;
+    float bisectHi = 0.0f;
+    int bisectLeft = 0;
+    DensitySample surface;      // the sample at bisectHi
     bool lit = false;
     vec3 lightAtCloud = vec3(0.0f);
-    // The budget counts full samples; cheap samples (no detail, no light march) may take as many again.
-    float lastEmptyT = tEnter;  // the last sample that found no cloud
-    for (uint i = 0u; i < 2u * frame.march.x && fullSamples < frame.march.x && t < tExit; ++i)
+    // The lit view sample whose light cone is being marched.
+    float litSigmaS = 0.0f;
+    float litSigmaE = 0.0f;
+    float litHeightFraction = 0.0f;
+    float litStepM = 0.0f;  // the step it stands for
+    LightCone cone = LightCone(vec3(0.0f), 0.0f, 1u, 0u, 0u, 0.0f, 0.0f, -1.0f);
+    // The step of the last view sample: a bisection moves the sample to the surface it finds but keeps
+    // the step length it was taken with.
+    float dt = baseStep;
+    // 13 lookups at most per view sample (itself, 5 bisection, 6 cone, the long one).
+    uint lookupBudget = 13u * 2u * frame.march.x;
+    for (uint lookup = 0u; lookup < lookupBudget; ++lookup)
     {
-        float dt = max(baseStep, t * growth);
-        vec3 p = dir * t;
-        if (!full)
+        bool viewSample = state == MARCH_SEARCH || state == MARCH_FULL;
+        if (viewSample && (viewSamples >= 2u * frame.march.x || fullSamples >= frame.march.x || t >= tExit))
+            break;
+        if (viewSample)
+            dt = max(baseStep, t * growth);
+        // Deep in a cloud, where little of what lies behind reaches the eye, the base shape without detail
+        // erosion (frame.detailLod.x: the view transmittance below which; 0: never).
+        bool deep = transmittance < frame.detailLod.x;
+        vec3 q = dir * t;
+        bool cheap = state == MARCH_SEARCH || deep;
+        float coneLengthM = 0.0f;
+        if (state == MARCH_BISECT)
+            q = dir * (0.5f * (bisectLo + bisectHi));
+        else if (state == MARCH_CONE)
+            q = lightConeSamplePoint(cone, lightDir, cheap, coneLengthM);
+        DensitySample ds = cloudDensity(q, cheap, t);
+
+        if (state == MARCH_SEARCH)
         {
-            if (cloudDensity(p, true, t).density > 0.0f)
+            ++viewSamples;
+            if (ds.density > 0.0f)
             {
-                full = true;
+                state = MARCH_FULL;
                 emptyFull = 0;
                 t = max(tEnter, t - dt);
             }
             else
             {
                 lastEmptyT = t;
+                afterEmpty = true;
                 t += 2.0f * dt;
             }
             continue;
         }
-        // Deep in a cloud, where little of what lies behind reaches the eye, the base shape without detail
-        // erosion (frame.detailLod.x: the view transmittance below which; 0: never).
-        bool deep = transmittance < frame.detailLod.x;
-        DensitySample ds = cloudDensity(p, deep, t);
-        ++fullSamples;
-        if (ds.density <= 0.0f)
+        if (state == MARCH_FULL)
         {
-            lastEmptyT = t;
-            if (++emptyFull >= 6)
-                full = false;
-            t += dt;
-            continue;
-        }
-        if (t - lastEmptyT > 60.0f && lastEmptyT < t)
-        {
-            // Entering a cloud with long steps: find its surface by bisection, so that the sunlit skin
-            // (a mean free path is ~20 m) is lit and not a point hundreds of metres inside it.
-            float lo = lastEmptyT;
-            float hi = t;
-            for (int b = 0; b < 5; ++b)
-            {
-                float mid = 0.5f * (lo + hi);
-                if (cloudDensity(dir * mid, true, mid).density > 0.0f)
-                    hi = mid;
-                else
-                    lo = mid;
-            }
-            t = hi;
-            p = dir * t;
-            ds = cloudDensity(p, deep, t);
-            lastEmptyT = t;
+            ++viewSamples;
+            ++fullSamples;
             if (ds.density <= 0.0f)
+            {
+                lastEmptyT = t;
+                afterEmpty = true;
+                if (++emptyFull >= 6)
+                    state = MARCH_SEARCH;
+                t += deep ? dt * frame.detailLod.y : dt;
                 continue;
+            }
+            if (afterEmpty && t - lastEmptyT > 60.0f)
+            {
+                // Entering a cloud with a long step: find its surface (as this sample sees the cloud: with
+                // detail erosion unless deep) by bisection, so that the sunlit skin (a mean free path is
+                // ~20 m) is lit and not a point up to a step inside it.
+                bisectLo = lastEmptyT;
+                bisectHi = t;
+                surface = ds;
+                bisectLeft = 5;
+                state = MARCH_BISECT;
+                continue;
+            }
         }
-        emptyFull = 0;
-        float sigmaS = ds.density * frame.cloudLook.x;
-        // Rain makes bases dark: precipitation adds absorption near the base (DESIGN §3).
-        float rainAbsorption = saturate1(ds.rainMmH / 20.0f) * (1.0f - ds.heightFraction) * 1.5f;
-        float sigmaE = sigmaS * (1.0f + rainAbsorption);
-        if (!lit)
+        if (state == MARCH_BISECT)
         {
-            lightAtCloud = keyLightAt(p, lightDir);
-            lit = true;
+            float mid = 0.5f * (bisectLo + bisectHi);
+            if (ds.density > 0.0f)
+            {
+                bisectHi = mid;
+                surface = ds;
+            }
+            else
+                bisectLo = mid;
+            if (--bisectLeft > 0)
+                continue;
+            t = bisectHi;
+            ds = surface;
         }
-        // Light the part of the step that the eye sees: within ~one mean free path of its start.
-        vec3 lightPoint = p + dir * min(0.5f * dt, 1.0f / sigmaE);
-        float lightDepth = lightOpticalDepth(lightPoint, lightDir, t);
-        vec3 source = sigmaS * (lightAtCloud * multipleScattering(lightDepth, cosTheta, sigmaS * 100.0f) + ambientLight(ds.heightFraction));
-        radiance += transmittance * integrateScattering(source, sigmaE, dt);
-        float next = transmittance * exp(-sigmaE * dt);
+        if (state != MARCH_CONE)
+        {
+            // A lit view sample (full, or at the surface a bisection found): start its light cone.
+            emptyFull = 0;
+            afterEmpty = false;
+            litSigmaS = ds.density * frame.cloudLook.x;
+            // Rain makes bases dark: precipitation adds absorption near the base (DESIGN §3).
+            float rainAbsorption = saturate1(ds.rainMmH / 20.0f) * (1.0f - ds.heightFraction) * 1.5f;
+            litSigmaE = litSigmaS * (1.0f + rainAbsorption);
+            litHeightFraction = ds.heightFraction;
+            // Inside a cloud a step covers at most frame.detailLod.z of optical depth (at this sample's
+            // extinction, but at least half the full-density one: the first sample after a surface is
+            // thin, and the sunlit skin right behind it, a mean free path deep, is what the eye sees).
+            // Deep samples may stand for a longer step (frame.detailLod.y).
+            litStepM = dt;
+            if (frame.detailLod.z > 0.0f)
+                litStepM = min(litStepM, frame.detailLod.z / max(litSigmaE, 0.5f * frame.cloudLook.x));
+            if (deep)
+                litStepM *= frame.detailLod.y;
+            if (!lit)
+            {
+                lightAtCloud = keyLightAt(dir * t, lightDir);
+                lit = true;
+            }
+            // Light the step where the eye sees it: at its mean depth weighted by the transmittance from
+            // its start, 1/s - L e^-sL / (1 - e^-sL) (L/2 for a clear step, one mean free path for a
+            // dense one).
+            float stepDepth = litSigmaE * litStepM;
+            float lightDepthM = stepDepth < 1e-3f ? 0.5f * litStepM
+                                                  : 1.0f / litSigmaE - litStepM / (exp(stepDepth) - 1.0f);
+            cone = beginLightCone(dir * (t + lightDepthM), t);
+            state = MARCH_CONE;
+        }
+        else
+            lightConeAdd(cone, ds.density, coneLengthM);
+        if (!lightConeDone(cone))
+            continue;
+        float lightDepth = lightConeOpticalDepth(cone);
+        vec3 source = litSigmaS * (lightAtCloud * multipleScattering(lightDepth, cosTheta, litSigmaS * 100.0f) +
+                                   ambientLight(litHeightFraction));
+        float stepM = litStepM;
+        radiance += transmittance * integrateScattering(source, litSigmaE, stepM);
+        float next = transmittance * exp(-litSigmaE * stepM);
         depthWeighted += (transmittance - next) * t;
         depthWeight += transmittance - next;
         transmittance = next;
@@ -200,6 +319,7 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             transmittance = 0.0f;
             break;
         }
-        t += dt;
+        t += stepM;
+        state = MARCH_FULL;
     }
 }

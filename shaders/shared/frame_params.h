@@ -62,7 +62,8 @@ struct FrameParams
     // texel size (m), 0 when there is none this frame; w: unused (its tail starts after marchLod.w samples).
     vec4 lightVolume;
     // x: view samples behind a transmittance below this take the base shape without detail erosion (0:
-    // never; QualitySettings::detailMinTransmittance); yzw: unused.
+    // never; QualitySettings::detailMinTransmittance); y: those samples step this many times further; z: a
+    // step inside a cloud covers at most this optical depth (0: no limit; maxStepOpticalDepth); w: unused.
     vec4 detailLod;
 };
 

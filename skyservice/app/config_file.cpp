@@ -37,6 +37,8 @@ std::map<std::string, Key> keys()
         {"march.accumulation_frames", u32(&QualitySettings::accumulationFrames, 1, 64)},
         {"march.max_distance_m", real(&QualitySettings::maxDistanceM, 1000, 2000000)},
         {"march.reprojected", flag(&QualitySettings::reprojected)},
+        {"march.max_step_optical_depth", real(&QualitySettings::maxStepOpticalDepth, 0, 100)},
+        {"march.deep_step_factor", real(&QualitySettings::deepStepFactor, 1, 8)},
         {"lighting.octaves", u32(&QualitySettings::octaves, 1, 8)},
         {"lighting.octave_attenuation", real(&QualitySettings::octaveAttenuation, 0, 1)},
         {"lighting.octave_contribution", real(&QualitySettings::octaveContribution, 0, 1)},

@@ -60,6 +60,8 @@ struct BenchOptions
     double lightVolumeTexelM = -1;  ///< < 0: the renderer's default; 0: no light volume
     int64_t lightVolumeMinRays = -1;  ///< < 0: the renderer's default
     double detailMinTransmittance = -1;  ///< < 0: the renderer's default
+    double deepStepFactor = -1;          ///< < 0: the renderer's default
+    double maxStepOpticalDepth = -1;     ///< < 0: the renderer's default
     double detailFadeStartM = -1, detailFadeEndM = -1;
     bool noDetail = false;
     uint32_t gpuFrames = 1;
@@ -88,7 +90,9 @@ nlohmann::json qualityJson(const QualitySettings& q)
             {"coneStepM", q.coneStepM}, {"lightLodDistanceM", q.lightLodDistanceM},
             {"fullConeSamples", q.fullConeSamples}, {"detailFadeStartM", q.detailFadeStartM},
             {"detailFadeEndM", q.detailFadeEndM}, {"lightVolumeTexelM", q.lightVolumeTexelM},
-            {"lightVolumeMinRays", q.lightVolumeMinRays}, {"detailMinTransmittance", q.detailMinTransmittance}};
+            {"lightVolumeMinRays", q.lightVolumeMinRays}, {"detailMinTransmittance", q.detailMinTransmittance},
+            {"deepStepFactor", q.deepStepFactor},
+            {"maxStepOpticalDepth", q.maxStepOpticalDepth}};
 }
 
 // Box-filters an image down by an integer factor (contact sheet tiles only).
@@ -179,6 +183,9 @@ void fillDevice(const Renderer& r, BenchRun& run)
     run.driver = r.ctx.driverInfo;
     run.apiVersion = p.apiVersion;
     run.timestampPeriodNs = r.ctx.timestampPeriodNs;
+    for (const Program* program : {&r.cloudProgram, &r.reconstructProgram, &r.compositeProgram, &r.lightVolumeProgram})
+        if (!program->statistics.empty())
+            run.pipelineStatistics[program->name] = program->statistics;
     switch (p.deviceType)
     {
     case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: run.deviceType = "discrete"; break;
@@ -226,6 +233,10 @@ int runBench(const BenchOptions& o)
         quality.lightVolumeMinRays = uint32_t(o.lightVolumeMinRays);
     if (o.detailMinTransmittance >= 0)
         quality.detailMinTransmittance = o.detailMinTransmittance;
+    if (o.deepStepFactor >= 0)
+        quality.deepStepFactor = o.deepStepFactor;
+    if (o.maxStepOpticalDepth >= 0)
+        quality.maxStepOpticalDepth = o.maxStepOpticalDepth;
     if (o.detailFadeStartM >= 0)
         quality.detailFadeStartM = o.detailFadeStartM;
     if (o.detailFadeEndM >= 0)
@@ -235,6 +246,7 @@ int runBench(const BenchOptions& o)
     RendererOptions ro;
     ro.context.deviceSelector = o.device;
     ro.context.validation = o.validate;
+    ro.context.pipelineStatistics = true;
     SkyStatus status = createRenderer(r, ro);
     BenchRun run;
     std::vector<ImageRgba8> tiles;
@@ -337,6 +349,12 @@ int main(int argc, char** argv)
     app.add_option("--detail-min-transmittance", o.detailMinTransmittance,
                    "View samples behind a transmittance below this skip the detail erosion (0: never)")
         ->check(CLI::Range(0.0, 1.0));
+    app.add_option("--deep-step-factor", o.deepStepFactor,
+                   "Those deep view samples step this many times further (1: the same)")
+        ->check(CLI::Range(1.0, 8.0));
+    app.add_option("--max-step-optical-depth", o.maxStepOpticalDepth,
+                   "A step inside a cloud covers at most this optical depth (0: no limit)")
+        ->check(CLI::Range(0.0, 100.0));
     app.add_option("--detail-fade-start", o.detailFadeStartM, "Detail erosion fades out from this distance (m)")
         ->check(CLI::Range(0.0, 1e7));
     app.add_option("--detail-fade-end", o.detailFadeEndM, "... to this distance (m)")->check(CLI::Range(0.0, 1e7));

@@ -78,6 +78,7 @@ nlohmann::json benchToJson(const BenchRun& run)
     doc["mode"] = run.mode;
     doc["eyeSpeedMps"] = run.speedMps;
     doc["quality"] = run.quality;
+    doc["pipelineStatistics"] = run.pipelineStatistics;
     nlohmann::json alloc = nlohmann::json::object();
     for (const auto& [name, bytes] : run.memory.liveBytes)
         alloc[name] = bytes;
@@ -122,6 +123,8 @@ void printBenchTable(std::FILE* out, const BenchRun& run)
     std::fprintf(out, "sky-bench: %s | %s | %ux%u | mode %s | eye %.0f m/s | %u samples after %u warm-up, %u GPU frame(s) each\n",
                  run.deviceName.c_str(), run.driver.c_str(), run.width, run.height, run.mode.c_str(), run.speedMps,
                  run.frames, run.warmup, run.gpuFramesPerCall);
+    for (const auto& [program, statistics] : run.pipelineStatistics)
+        std::fprintf(out, "pipeline %s: %s\n", program.c_str(), statistics.c_str());
     std::fprintf(out, "GPU ms per pass and frame (median/p95, timestamps); wall = renderView call incl. CPU setup "
                       "(median/p95)\n");
     std::vector<std::string> columns = passColumns(run);

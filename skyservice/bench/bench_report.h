@@ -64,6 +64,9 @@ struct BenchRun
     std::string mode;
     double speedMps = 0;      ///< eye speed along its heading (m/s, 60 Hz frames); 0 = a still eye
     nlohmann::json quality;   ///< the QualitySettings used
+    /// The driver compiler's statistics per frame-path pipeline (registers, spills, ...), where the
+    /// device reports them (VK_KHR_pipeline_executable_properties); empty otherwise.
+    std::map<std::string, std::string> pipelineStatistics;
     BenchMemory memory;
     std::vector<BenchSceneResult> scenes;
 };

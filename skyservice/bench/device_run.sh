@@ -75,24 +75,29 @@ MODE=${SKY_BENCH_MODE:-full}  # full | reprojected | both (both: reprojected at 
 if [ "$MODE" = builds ]; then
   # A/B of sky-bench builds in one call (the main branch against a change of a shader and its dispatch):
   # each .gpu/builds/<label>/ holds a sky-bench and its SPIR-V (device_prepare.sh, SKY_BENCH_BUILDS).
-  # Reprojected mode, 100 frames after 20 warm-up, at each of SKY_BENCH_AB_SIZES (default 1920x1080),
+  # 100 frames after 20 warm-up (full mode: 10, and 4 GPU frames per sample) in each of
+  # SKY_BENCH_AB_MODES (default reprojected), at each of SKY_BENCH_AB_SIZES (default 1920x1080),
   # SKY_BENCH_SCENES (default all), and each option set of SKY_BENCH_VARIANTS (';'-separated, as in ab
   # mode); the builds take turns inside each size and option set, so that clock drift hits them alike.
-  # Writes bench-<label>-<W>x<H>-v<i>.json, then the baseline at each size.
+  # Writes bench-<label>-<W>x<H>-v<i>.json (full mode: bench-<label>-full-<W>x<H>-v<i>.json), then the
+  # baseline at each size.
   IFS=';' read -ra VARIANTS <<< "${SKY_BENCH_VARIANTS:- }"
-  for size in ${SKY_BENCH_AB_SIZES:-1920x1080}; do
-    w=${size%x*}; h=${size#*x}; i=0
-    for v in "${VARIANTS[@]}"; do
-      for dir in "$G"/builds/*/; do
-        label=$(basename "$dir")
-        el "sky-bench $label ${w}x$h v$i: $v"
-        # shellcheck disable=SC2086
-        SKY_SPIRV_DIR=$dir/spirv timeout ${SKY_BENCH_RUN_LIMIT_S:-60} "$dir/sky-bench" --scene "${SKY_BENCH_SCENES:-all}" \
-          --width $w --height $h --frames 100 --warmup 20 --mode reprojected --device NVIDIA \
-          --json "$OUT/bench-$label-${w}x$h-v$i.json" $v | grep -v "MiB$"
-        el "rc=${PIPESTATUS[0]}"
+  for m in ${SKY_BENCH_AB_MODES:-reprojected}; do
+    if [ "$m" = reprojected ]; then extra="--warmup 20"; tag=""; else extra="--warmup 10 --gpu-frames 4"; tag="full-"; fi
+    for size in ${SKY_BENCH_AB_SIZES:-1920x1080}; do
+      w=${size%x*}; h=${size#*x}; i=0
+      for v in "${VARIANTS[@]}"; do
+        for dir in "$G"/builds/*/; do
+          label=$(basename "$dir")
+          el "sky-bench $label $m ${w}x$h v$i: $v"
+          # shellcheck disable=SC2086
+          SKY_SPIRV_DIR=$dir/spirv timeout ${SKY_BENCH_RUN_LIMIT_S:-60} "$dir/sky-bench" --scene "${SKY_BENCH_SCENES:-all}" \
+            --width $w --height $h --frames 100 $extra --mode $m --device NVIDIA \
+            --json "$OUT/bench-$label-$tag${w}x$h-v$i.json" $v | grep -v "MiB$"
+          el "rc=${PIPESTATUS[0]}"
+        done
+        i=$((i + 1))
       done
-      i=$((i + 1))
     done
   done
   for size in ${SKY_BENCH_AB_SIZES:-1920x1080}; do base ${size%x*} ${size#*x}; done

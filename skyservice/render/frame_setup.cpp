@@ -138,7 +138,8 @@ FrameParams makeFrameParams(const FrameInputs& in)
     f.march = uvec4(q.maxViewSteps, q.lightSamples, 0u, 0u);
     f.marchLod = vec4(float(q.detailFadeStartM), float(std::max(q.detailFadeEndM, q.detailFadeStartM + 1.0)),
                       float(std::max(q.lightLodDistanceM, 0.0)), float(q.fullConeSamples));
-    f.detailLod = vec4(float(q.detailMinTransmittance), 0.0f, 0.0f, 0.0f);
+    f.detailLod = vec4(float(q.detailMinTransmittance), float(std::max(q.deepStepFactor, 1.0)),
+                       float(std::max(q.maxStepOpticalDepth, 0.0)), 0.0f);
     f.worldJitter = vec4(float(2.0 * std::tan(req.fovYDeg * M_PI / 360.0) / double(req.height)), 0.0f, 0.0f, 0.0f);
     f.reprojection = uvec4(1u, 0u, 0u, 0u);  // full resolution unless the renderer's reprojected path says otherwise
     return f;

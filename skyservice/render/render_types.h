@@ -35,8 +35,17 @@ struct QualitySettings
     /// View samples behind a view transmittance below this take the base shape without detail erosion
     /// (0: never): there little of the sample reaches the eye. H200, 1080p reprojected: -4..-7 % per frame
     /// in the volumetric scenes at 0.1 (-7..-10 % at 0.2); pictures 47-56 dB of those without it at 0.1
-    /// (41-50 dB at 0.2), tests/gpu/test_render.cpp.
+    /// (41-50 dB at 0.2), tests/gpu/test_render.cpp. (Measured with the march before its bisection fix,
+    /// BENCHMARKS.md fifth session.)
     double detailMinTransmittance = 0.1;
+    /// Those deep view samples also step this many times further (1: the same step).
+    double deepStepFactor = 1.0;
+    /// A step inside a cloud covers at most this optical depth (at the sample's extinction, at least half
+    /// the full-density one), so that the sunlit skin, a mean free path deep, gets its samples where the
+    /// distance-grown step is longer (0: no limit). Against 5x finer steps (tests/gpu/test_render.cpp
+    /// CloudStepsConvergeOnFinerSteps): 34.7 / 41.5 dB at 1, 34.4 / 35.1 at 2, 38.9 / 46.5 at 0.5. H200,
+    /// 1080p reprojected, volumetric scenes: 0.70-1.44 ms at 1, 0.44-1.57 at 2, 0.30-1.52 with no limit.
+    double maxStepOpticalDepth = 1.0;
     double detailFadeStartM = 8000.0;  ///< detail erosion fades out from here...
     double detailFadeEndM = 25000.0;   ///< ...to here (beyond, its noise is finer than a pixel)
     uint32_t octaves = 3;            ///< multiple-scattering octaves (Wrenninge 2013)

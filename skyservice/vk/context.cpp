@@ -265,6 +265,18 @@ SkyStatus createContext(Context& ctx, const ContextOptions& options)
     if (ctx.externalSemaphoreFd)
         deviceExtensions.push_back(VK_KHR_EXTERNAL_SEMAPHORE_FD_EXTENSION_NAME);
 
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executableFeatures = {
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+    bool pipelineStatistics = options.pipelineStatistics &&
+                              hasDeviceExtension(ctx.physicalDevice, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+    if (pipelineStatistics)
+    {
+        deviceExtensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+        executableFeatures.pipelineExecutableInfo = VK_TRUE;
+        executableFeatures.pNext = features13.pNext;
+        features13.pNext = &executableFeatures;
+    }
+
     VkDeviceCreateInfo deviceInfo = {VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     deviceInfo.pNext = &features;
     deviceInfo.queueCreateInfoCount = 1;
@@ -287,6 +299,15 @@ SkyStatus createContext(Context& ctx, const ContextOptions& options)
     if (ctx.externalSemaphoreFd)
         ctx.getSemaphoreFd =
             reinterpret_cast<PFN_vkGetSemaphoreFdKHR>(vkGetDeviceProcAddr(ctx.device, "vkGetSemaphoreFdKHR"));
+    if (pipelineStatistics)
+    {
+        ctx.getPipelineExecutableProperties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+            vkGetDeviceProcAddr(ctx.device, "vkGetPipelineExecutablePropertiesKHR"));
+        ctx.getPipelineExecutableStatistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+            vkGetDeviceProcAddr(ctx.device, "vkGetPipelineExecutableStatisticsKHR"));
+        if (!ctx.getPipelineExecutableProperties || !ctx.getPipelineExecutableStatistics)
+            ctx.getPipelineExecutableProperties = nullptr;
+    }
     ctx.externalMemoryFd = ctx.getMemoryFd != nullptr;
     ctx.externalSemaphoreFd = ctx.getSemaphoreFd != nullptr;
     if (!options.quiet)

@@ -17,6 +17,9 @@ struct ContextOptions
     bool validation = false;        ///< enable VK_LAYER_KHRONOS_validation and count its messages
     std::string deviceSelector;     ///< "" = best (discrete > integrated > virtual > CPU), a number, or a name substring
     bool quiet = false;             ///< do not print the chosen device
+    /// Capture the driver compiler's statistics of each pipeline (registers, spills...) into
+    /// Program::statistics, where the device has VK_KHR_pipeline_executable_properties (sky-bench).
+    bool pipelineStatistics = false;
     /// How shaders read their parameter blocks (Context::paramsInStorageBuffers): Auto = storage buffers
     /// on lavapipe only; the others force one variant (tests check that both draw the same).
     enum class ParamBlocks { Auto, Uniform, Storage } paramBlocks = ParamBlocks::Auto;
@@ -51,6 +54,10 @@ struct Context
     /// Shaders read their parameter blocks from storage buffers (the `.storage.spv` variants) instead of
     /// uniform buffers: on lavapipe, whose uniform buffers through push descriptors leak (bindings.h).
     bool paramsInStorageBuffers = false;
+
+    /// Pipelines are created with their compiler statistics captured (ContextOptions::pipelineStatistics).
+    PFN_vkGetPipelineExecutablePropertiesKHR getPipelineExecutableProperties = nullptr;
+    PFN_vkGetPipelineExecutableStatisticsKHR getPipelineExecutableStatistics = nullptr;
 
     /// Validation messages of severity warning or error seen so far (tests fail on any).
     std::atomic<uint32_t> validationMessages{0};

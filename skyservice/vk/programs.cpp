@@ -259,6 +259,52 @@ std::string spirvDirectory()
     return env && *env ? env : SKY_SPIRV_DIR;
 }
 
+namespace
+{
+
+std::string statisticValue(const VkPipelineExecutableStatisticKHR& s)
+{
+    switch (s.format)
+    {
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: return s.value.b32 ? "true" : "false";
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: return std::to_string(s.value.i64);
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: return std::to_string(s.value.u64);
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR: return std::to_string(s.value.f64);
+    default: return "?";
+    }
+}
+
+// "name value, ..." of each executable of the pipeline (a compute pipeline has one), "" when the context
+// does not capture them.
+std::string pipelineStatistics(const Context& ctx, VkPipeline pipeline)
+{
+    if (!ctx.getPipelineExecutableProperties)
+        return "";
+    VkPipelineInfoKHR info = {VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR};
+    info.pipeline = pipeline;
+    uint32_t count = 0;
+    if (ctx.getPipelineExecutableProperties(ctx.device, &info, &count, nullptr) != VK_SUCCESS)
+        return "";
+    std::string out;
+    for (uint32_t e = 0; e < count; ++e)
+    {
+        VkPipelineExecutableInfoKHR exec = {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR};
+        exec.pipeline = pipeline;
+        exec.executableIndex = e;
+        uint32_t n = 0;
+        if (ctx.getPipelineExecutableStatistics(ctx.device, &exec, &n, nullptr) != VK_SUCCESS)
+            continue;
+        std::vector<VkPipelineExecutableStatisticKHR> stats(n, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
+        if (ctx.getPipelineExecutableStatistics(ctx.device, &exec, &n, stats.data()) != VK_SUCCESS)
+            continue;
+        for (uint32_t k = 0; k < n; ++k)
+            out += (out.empty() ? "" : ", ") + std::string(stats[k].name) + " " + statisticValue(stats[k]);
+    }
+    return out;
+}
+
+}  // namespace
+
 SkyStatus createProgram(const Context& ctx, Program& out, const char* name)
 {
     out = Program{};
@@ -310,6 +356,8 @@ SkyStatus createProgram(const Context& ctx, Program& out, const char* name)
     pipelineInfo.stage.module = out.module;
     pipelineInfo.stage.pName = "main";
     pipelineInfo.layout = out.layout;
+    if (ctx.getPipelineExecutableProperties)
+        pipelineInfo.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
     VkResult r = vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &out.pipeline);
     if (r != VK_SUCCESS)
     {
@@ -323,6 +371,7 @@ SkyStatus createProgram(const Context& ctx, Program& out, const char* name)
     for (int i = 0; i < 3; ++i)
         out.localSize[i] = iface.localSize[i];
     setObjectName(ctx, VK_OBJECT_TYPE_PIPELINE, uint64_t(out.pipeline), name);
+    out.statistics = pipelineStatistics(ctx, out.pipeline);
     return SkyStatus::success();
 }
 

@@ -24,6 +24,9 @@ struct Program
     std::vector<VkDescriptorType> bindings;  ///< binding i has type bindings[i]
     uint32_t pushConstantSize = 0;           ///< bytes
     uint32_t localSize[3] = {1, 1, 1};
+    /// The driver compiler's statistics, "name value, ..." per executable ("" unless the context captures
+    /// them: ContextOptions::pipelineStatistics).
+    std::string statistics;
 };
 
 /// What reflection found in a SPIR-V module (exposed for tests).

@@ -46,9 +46,11 @@ ViewRequest aboveDeck()
 
 // Gates of every flight segment: the display frame >= 30 dB (issue 5); the cloud image >= 18 dB
 // (measured 19.8-22.7 dB in cruise and turns; the reference against itself one frame earlier is
-// 21.5-23.4 dB in the turns); the edge bands >= 16 dB (cloud image; measured >= 17.1 dB). In a turn the
-// band the view turns toward has no history or the oldest: there it must also be at most 4 dB below
-// the whole frame (measured <= 2.8 dB): a smear, history stretched in from the border, shows there first.
+// 21.5-23.4 dB in the turns); the edge bands >= 16 dB (cloud image; measured >= 18.9 dB). In a turn the
+// band the view turns toward has no history or the oldest: there it must also be at most 5 dB below
+// the whole frame (measured <= 4.5 dB): a smear, history stretched in from the border, shows there first.
+// (Before the march's bisection fix, fifth session, the 90 deg/s turn measured 20.1 dB whole, 17.2 dB at
+// the edge, a 2.9 dB deficit: now both are higher, 23.1 and 18.9, the whole frame more.)
 void expectGates(const FlightStats& s, bool turning = false)
 {
     EXPECT_EQ(s.historyDrops, 0);
@@ -57,7 +59,7 @@ void expectGates(const FlightStats& s, bool turning = false)
     EXPECT_GE(s.worstEdgeCloudDb, 16.0);
     if (turning)
     {
-        EXPECT_LE(s.worstEdgeDeficitDb, 4.0);
+        EXPECT_LE(s.worstEdgeDeficitDb, 5.0);
     }
 }
 
