@@ -272,19 +272,27 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
         {
             // A lit view sample (full, or at the surface a bisection found): start its light cone.
             emptyFull = 0;
+            bool firstInCloud = afterEmpty;
             afterEmpty = false;
             litSigmaS = ds.density * frame.cloudLook.x;
             // Rain makes bases dark: precipitation adds absorption near the base (DESIGN §3).
             float rainAbsorption = saturate1(ds.rainMmH / 20.0f) * (1.0f - ds.heightFraction) * 1.5f;
             litSigmaE = litSigmaS * (1.0f + rainAbsorption);
             litHeightFraction = ds.heightFraction;
-            // Inside a cloud a step covers at most frame.detailLod.z of optical depth (at this sample's
-            // extinction, but at least half the full-density one: the first sample after a surface is
-            // thin, and the sunlit skin right behind it, a mean free path deep, is what the eye sees).
-            // Deep samples may stand for a longer step (frame.detailLod.y).
+            // Inside a cloud a step covers at most frame.detailLod.z of optical depth at this sample's
+            // extinction, so that the sunlit skin, a mean free path deep, gets its samples. The sample at
+            // a surface is thin (the bisection ends where the density starts), so its step counts the
+            // full-density extinction; while the view transmittance is above 0.5, at least half of it
+            // (the eroded skin is thin too, and what the eye sees). Thinner cloud behind that keeps its
+            // long steps. Deep samples may stand for a longer step (frame.detailLod.y).
             litStepM = dt;
             if (frame.detailLod.z > 0.0f)
-                litStepM = min(litStepM, frame.detailLod.z / max(litSigmaE, 0.5f * frame.cloudLook.x));
+            {
+                float floorSigma = firstInCloud          ? frame.cloudLook.x
+                                   : transmittance > 0.5f ? 0.5f * frame.cloudLook.x
+                                                          : 0.0f;
+                litStepM = min(litStepM, frame.detailLod.z / max(litSigmaE, floorSigma));
+            }
             if (deep)
                 litStepM *= frame.detailLod.y;
             if (!lit)
