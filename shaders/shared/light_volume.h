@@ -9,7 +9,7 @@
 //   slide with the eye), altitude shell.x + (k + 0.5) / LEVELS * (shell.y - shell.x),
 // the transmittance exp(-cloudLook.x x relative density x metres) of the cone samples from
 // frame.marchLod.w on and of the long sample, all with the cheap (base-shape) density: the tail of
-// light cone (LightCone, shaders/clouds/cloud_lighting.glsl). Transmittance, not optical depth, because the
+// the light cone (LightCone, shaders/clouds/cloud_lighting.glsl). Transmittance, not optical depth, because the
 // march interpolates between texels: across a cloud's edge, where the tail goes from clear to opaque, the
 // mean of two optical depths made the lit side far too dark (Jensen: exp of a mean is below the mean of
 // exps); measured on tests/gpu/test_light_volume.cpp's cumulus from below, 33.6 dB with optical depth. The first cone samples stay live and detailed,

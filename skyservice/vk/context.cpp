@@ -271,6 +271,15 @@ SkyStatus createContext(Context& ctx, const ContextOptions& options)
                               hasDeviceExtension(ctx.physicalDevice, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
     if (pipelineStatistics)
     {
+        VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR supportedExecutable = {
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+        VkPhysicalDeviceFeatures2 supported = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+        supported.pNext = &supportedExecutable;
+        vkGetPhysicalDeviceFeatures2(ctx.physicalDevice, &supported);
+        pipelineStatistics = supportedExecutable.pipelineExecutableInfo == VK_TRUE;
+    }
+    if (pipelineStatistics)
+    {
         deviceExtensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
         executableFeatures.pipelineExecutableInfo = VK_TRUE;
         executableFeatures.pNext = features13.pNext;
