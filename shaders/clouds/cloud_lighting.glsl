@@ -316,9 +316,8 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
         float lightDepth = lightConeOpticalDepth(cone);
         vec3 source = litSigmaS * (lightAtCloud * multipleScattering(lightDepth, cosTheta, litSigmaS * 100.0f) +
                                    ambientLight(litHeightFraction));
-        float stepM = litStepM;
-        radiance += transmittance * integrateScattering(source, litSigmaE, stepM);
-        float next = transmittance * exp(-litSigmaE * stepM);
+        radiance += transmittance * integrateScattering(source, litSigmaE, litStepM);
+        float next = transmittance * exp(-litSigmaE * litStepM);
         depthWeighted += (transmittance - next) * t;
         depthWeight += transmittance - next;
         transmittance = next;
@@ -327,7 +326,7 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             transmittance = 0.0f;
             break;
         }
-        t += stepM;
+        t += litStepM;
         state = MARCH_FULL;
     }
 }

@@ -46,7 +46,8 @@ struct QualitySettings
     /// that the sunlit skin, a mean free path deep, gets its samples where the distance-grown step is
     /// longer (0: no limit). Against 5x finer steps (tests/gpu/test_render.cpp
     /// CloudStepsConvergeOnFinerSteps): 36.0 / 42.2 dB. With no limit the sunlit side of a cumulus is 15 %
-    /// too dark (test SunSideOfACumulusIsBrighterThanItsShadowSide) and frames ~25-50 % cheaper.
+    /// too dark (test SunSideOfACumulusIsBrighterThanItsShadowSide fails) and frames were 1.5-3x cheaper
+    /// (H200, 1080p reprojected, measured against the limit with a floor everywhere: BENCHMARKS.md).
     double maxStepOpticalDepth = 1.0;
     double detailFadeStartM = 8000.0;  ///< detail erosion fades out from here...
     double detailFadeEndM = 25000.0;   ///< ...to here (beyond, its noise is finer than a pixel)
