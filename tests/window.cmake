@@ -18,3 +18,8 @@ gtest_discover_tests(test_weather_stage TEST_PREFIX "window." DISCOVERY_TIMEOUT 
 add_executable(test_weather_swap gpu/test_weather_swap.cpp gpu/scenes.cpp)
 target_link_libraries(test_weather_swap PRIVATE sky_renderer GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_weather_swap TEST_PREFIX "window." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+
+# The weather window's column-bounds pyramid for the march's empty-space skipping (CPU).
+add_executable(test_column_bounds unit/test_column_bounds.cpp)
+target_link_libraries(test_column_bounds PRIVATE sky_renderer GTest::gtest_main sky_warnings)
+gtest_discover_tests(test_column_bounds TEST_PREFIX "window." DISCOVERY_TIMEOUT 30 PROPERTIES LABELS cpu)

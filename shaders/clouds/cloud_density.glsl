@@ -90,6 +90,7 @@ struct DensitySample
     float density;   // relative density (multiplies cloudLook.x for the extinction per metre)
     float rainMmH;   // precipitation rate of the densest layer here (mm/h), for rain darkening
     float heightFraction;  // 0 at the base, 1 at the top of the layer that contributed most
+    bool inLayer;    // a layer's coverage and altitude range hold the point (its noise may still leave it empty)
 };
 
 DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
@@ -98,6 +99,7 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
     s.density = 0.0f;
     s.rainMmH = 0.0f;
     s.heightFraction = 0.5f;
+    s.inLayer = false;
     float h;
     WeatherLookup w = weatherLookup(weatherMapPosition(p, h));
     if (!w.inside || h < frame.shell.x || h > frame.shell.y)
@@ -115,8 +117,9 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         float coverage = layer.x;
         float base = layer.y;
         float top = layer.z;
-        if (coverage < 0.01f || top <= base || h < base || h > top)
+        if (coverage < CLOUD_COVERAGE_MIN || top <= base || h < base || h > top)
             continue;
+        s.inLayer = true;
         float hf = (h - base) / (top - base);
         int cloudType = anvilSlab ? CLOUD_TYPE_CUMULONIMBUS
                                   : int(texelFetch(weatherWindow, ivec3(w.texel, 2 * k), 0).w + 0.5f);

@@ -142,9 +142,10 @@ const int MARCH_FULL = 1;     // full view samples inside a cloud
 const int MARCH_BISECT = 2;   // finding the surface of a cloud entered with a long step
 const int MARCH_CONE = 3;     // the light cone of a lit view sample
 
-// March from tEnter to tExit: cheap samples with double steps until a cloud is hit, full samples inside,
-// back to cheap after 6 empty full samples; step length grows with distance; blue-noise start offset;
-// stop when the transmittance falls below 0.01 (DESIGN §3 "March").
+// March from tEnter to tExit: cheap samples with double steps until a cloud is hit (jumping over
+// stretches the weather's column bounds show empty), full samples inside, back to cheap after 6 empty
+// full samples; step length grows with distance; blue-noise start offset; stop when the transmittance
+// falls below 0.01 (DESIGN §3 "March").
 // Every iteration takes exactly one density lookup, whichever part of the march it serves (a state:
 // search, full view sample, surface bisection, light cone). The 32 rays of a GPU subgroup are in
 // different parts at once; written as nested loops, the subgroup ran each part's lookups one after the
@@ -168,6 +169,15 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
     float jitter = fract(texelFetch(blueNoise, jitterTexel, 0).x + 0.61803399f * float(frame.image.z));
     float t = tEnter + jitter * max(baseStep, tEnter * growth);
     int state = MARCH_SEARCH;
+    // Empty-space skipping in the search (empty_space.glsl): the stretch tried next, where the last
+    // stretch that may hold cloud ends (searched step by step until then), and whether the last view
+    // sample lay outside every layer. Inside one (in the gaps of a cumulus field, or with the eye in a
+    // deck) a check fails for sure, as the bounds hold that layer, and would only cost its fetch; so the
+    // first check waits for the first sample.
+    bool skipping = (frame.image.w & FRAME_FLAG_NO_SKIPPING) == 0u;
+    float skipStretchM = 0.0f;
+    float recheckT = tEnter;
+    bool outsideLayers = false;
     int emptyFull = 0;
     // The budget counts full samples; cheap samples (no detail, no light march) may take as many again.
     uint viewSamples = 0u;
@@ -198,6 +208,24 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             break;
         if (viewSample)
             dt = max(baseStep, t * growth);
+        if (state == MARCH_SEARCH && skipping && outsideLayers && t >= recheckT)
+        {
+            // Jump over a stretch the column bounds show empty (at least 4 search steps), doubling it
+            // while that holds; a stretch that may hold cloud is searched step by step, and the next one
+            // tried beyond it is half as long.
+            float stretchM = max(skipStretchM, 8.0f * dt);
+            float t1 = min(t + stretchM, tExit);
+            if (noCloudBetween(dir, t, t1))
+            {
+                lastEmptyT = t1;
+                afterEmpty = true;
+                t = t1;
+                skipStretchM = 2.0f * stretchM;
+                continue;
+            }
+            recheckT = t1;
+            skipStretchM = 0.5f * stretchM;
+        }
         // Deep in a cloud, where little of what lies behind reaches the eye, the base shape without detail
         // erosion (frame.detailLod.x: the view transmittance below which; 0: never).
         bool deep = transmittance < frame.detailLod.x;
@@ -209,6 +237,8 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
         else if (state == MARCH_CONE)
             q = lightConeSamplePoint(cone, lightDir, cheap, coneLengthM);
         DensitySample ds = cloudDensity(q, cheap, t);
+        if (viewSample)
+            outsideLayers = !ds.inLayer;
 
         if (state == MARCH_SEARCH)
         {

@@ -10,6 +10,7 @@
 #include "shaders/shared/weather_window.h"
 #include "shaders/shared/atmosphere_params.h"
 #include "shaders/shared/light_volume.h"
+#include "shaders/shared/column_bounds.h"
 #include "shaders/lib/shell.glsl"
 #include "shaders/lib/cloud_shape.glsl"
 #include "shaders/lib/phase.glsl"
@@ -32,10 +33,13 @@ layout(binding = 9, r32f) uniform writeonly image2D depthOut;
 // Optical depth of the far part of the light cone around the eye (light_volume.h); a 1x1x1 stand-in
 // when frame.lightVolume.z is 0 (no volume this frame).
 layout(binding = 10) uniform sampler3D lightVolume;
+// The weather window's column-bounds pyramid (column_bounds.h): empty-space skipping in the search.
+layout(binding = 11) uniform usampler2D columnBounds;
 
 #include "shaders/lib/atmosphere_sampling.glsl"
 #include "shaders/clouds/cloud_density.glsl"
 #include "shaders/clouds/light_cone.glsl"
+#include "shaders/clouds/empty_space.glsl"
 #include "shaders/clouds/cloud_lighting.glsl"
 #include "shaders/clouds/high_cloud.glsl"
 #include "shaders/clouds/view_ray.glsl"

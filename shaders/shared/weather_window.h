@@ -26,6 +26,9 @@
 #define WEATHER_WINDOW_ANVIL_SLICE (2 * MAX_CLOUD_LAYERS + 2)
 #define WEATHER_WINDOW_SLICES (2 * MAX_CLOUD_LAYERS + 3)
 
+// Coverage below which a layer draws nothing (cloudDensity skips it; column_bounds.h counts from it).
+#define CLOUD_COVERAGE_MIN 0.01f
+
 // CIGI / WMO genera (DESIGN §3).
 #define CLOUD_TYPE_NONE 0
 #define CLOUD_TYPE_ALTOCUMULUS 1

@@ -39,6 +39,7 @@ std::map<std::string, Key> keys()
         {"march.reprojected", flag(&QualitySettings::reprojected)},
         {"march.max_step_optical_depth", real(&QualitySettings::maxStepOpticalDepth, 0, 100)},
         {"march.deep_step_factor", real(&QualitySettings::deepStepFactor, 1, 8)},
+        {"march.empty_space_skipping", flag(&QualitySettings::emptySpaceSkipping)},
         {"lighting.octaves", u32(&QualitySettings::octaves, 1, 8)},
         {"lighting.octave_attenuation", real(&QualitySettings::octaveAttenuation, 0, 1)},
         {"lighting.octave_contribution", real(&QualitySettings::octaveContribution, 0, 1)},

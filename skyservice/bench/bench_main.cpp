@@ -64,6 +64,7 @@ struct BenchOptions
     double maxStepOpticalDepth = -1;     ///< < 0: the renderer's default
     double detailFadeStartM = -1, detailFadeEndM = -1;
     bool noDetail = false;
+    bool noSkipping = false;
     uint32_t gpuFrames = 1;
     bool shadowMap = false;
     double speedMps = 0;  ///< the eye flies along its heading at this speed, one frame per 1/60 s
@@ -92,7 +93,7 @@ nlohmann::json qualityJson(const QualitySettings& q)
             {"detailFadeEndM", q.detailFadeEndM}, {"lightVolumeTexelM", q.lightVolumeTexelM},
             {"lightVolumeMinRays", q.lightVolumeMinRays}, {"detailMinTransmittance", q.detailMinTransmittance},
             {"deepStepFactor", q.deepStepFactor},
-            {"maxStepOpticalDepth", q.maxStepOpticalDepth}};
+            {"maxStepOpticalDepth", q.maxStepOpticalDepth}, {"emptySpaceSkipping", q.emptySpaceSkipping}};
 }
 
 // Box-filters an image down by an integer factor (contact sheet tiles only).
@@ -225,6 +226,8 @@ int runBench(const BenchOptions& o)
         quality.lightSamples = uint32_t(o.lightSamples);
     if (o.noDetail)
         quality.detail = false;
+    if (o.noSkipping)
+        quality.emptySpaceSkipping = false;
     if (o.fullConeSamples >= 0)
         quality.fullConeSamples = uint32_t(o.fullConeSamples);
     if (o.lightVolumeTexelM >= 0)
@@ -338,6 +341,7 @@ int main(int argc, char** argv)
     app.add_option("--light-samples", o.lightSamples, "Cone light samples (default: the renderer's; 0: none)")
         ->check(CLI::Range(0, 6));
     app.add_flag("--no-detail", o.noDetail, "Turn the detail erosion off");
+    app.add_flag("--no-skipping", o.noSkipping, "Turn the march's empty-space skipping off (search every step)");
     app.add_option("--full-cone-samples", o.fullConeSamples, "Cone samples that may take the detailed density")
         ->check(CLI::Range(0, 6));
     app.add_option("--light-volume-texel", o.lightVolumeTexelM,

@@ -134,6 +134,8 @@ FrameParams makeFrameParams(const FrameInputs& in)
         flags |= FRAME_FLAG_NO_LINEAR_OUTPUT;
     if (q.reprojected)
         flags |= FRAME_FLAG_REPROJECTED;
+    if (!q.emptySpaceSkipping)
+        flags |= FRAME_FLAG_NO_SKIPPING;
     f.image = uvec4(req.width, req.height, 0u, flags);
     f.march = uvec4(q.maxViewSteps, q.lightSamples, 0u, 0u);
     f.marchLod = vec4(float(q.detailFadeStartM), float(std::max(q.detailFadeEndM, q.detailFadeStartM + 1.0)),

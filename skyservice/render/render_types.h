@@ -72,6 +72,9 @@ struct QualitySettings
     double maxDistanceM = 700000.0;      ///< no cloud marched beyond this distance
     uint32_t noiseSeed = 1;              ///< seed of every noise texture
     bool detail = true;                  ///< detail erosion on
+    /// The march's search jumps over stretches that the weather's column bounds show empty
+    /// (shaders/shared/column_bounds.h); false samples every search step (tests, A/B).
+    bool emptySpaceSkipping = true;
     bool highCloud = true;               ///< cirrus layer on
     uint32_t accumulationFrames = 1;     ///< frames averaged, each with new march jitter and sub-pixel offset
     uint32_t shadowSteps = 48;           ///< density samples per shadow-map texel along the light ray

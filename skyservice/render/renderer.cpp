@@ -5,6 +5,7 @@
 #include "shaders/shared/noise_params.h"
 #include "shaders/shared/weather_window.h"
 #include "skyservice/render/atmosphere_passes.h"
+#include "skyservice/render/column_bounds.h"
 #include "skyservice/render/frame_images.h"
 #include "skyservice/render/frame_recording.h"
 #include "skyservice/render/frame_setup.h"
@@ -158,6 +159,12 @@ SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
     d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
     SKY_TRY(createImage(r.ctx, r.memory, r.weatherWindowImage, d, "weather window"));
     d = ImageDesc{};
+    d.format = VK_FORMAT_R8G8_UINT;  // shaders/shared/column_bounds.h
+    d.width = columnBoundsWidth(WEATHER_WINDOW_SIZE);
+    d.height = WEATHER_WINDOW_SIZE;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+    SKY_TRY(createImage(r.ctx, r.memory, r.columnBoundsImage, d, "weather column bounds"));
+    d = ImageDesc{};
     d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
     SKY_TRY(createImage(r.ctx, r.memory, r.linearStandIn, d, "linear frame stand-in (1x1)"));
     d.format = VK_FORMAT_R16G16B16A16_UINT;
@@ -186,7 +193,7 @@ void destroyRenderer(Renderer& r)
     }
     vkDeviceWaitIdle(r.ctx.device);  // shutdown only
     for (Image* img : {&r.baseNoise, &r.detailNoise, &r.curlNoise, &r.blueNoise, &r.transmittanceLut,
-                       &r.multiscatterLut, &r.skyViewLut, &r.aerialInscatterLut, &r.aerialTransmittanceLut, &r.weatherWindowImage, &r.lightVolume, &r.cloudImage, &r.depthImage,
+                       &r.multiscatterLut, &r.skyViewLut, &r.aerialInscatterLut, &r.aerialTransmittanceLut, &r.weatherWindowImage, &r.columnBoundsImage, &r.lightVolume, &r.cloudImage, &r.depthImage,
                        &r.linearImage, &r.displayImage, &r.freshCloudImage, &r.freshDepthImage, &r.history[0],
                        &r.history[1], &r.linearStandIn, &r.historyStandIn})
         destroyImage(r.ctx, r.memory, *img);

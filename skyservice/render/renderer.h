@@ -48,6 +48,7 @@ struct Renderer
     Image transmittanceLut, multiscatterLut, skyViewLut;
     Image aerialInscatterLut, aerialTransmittanceLut;  ///< 3D, AERIAL_LUT_* (atmosphere_params.h)
     Image weatherWindowImage;
+    Image columnBoundsImage;  ///< the window's column-bounds pyramid (shaders/shared/column_bounds.h)
     Image lightVolume;  ///< 3D, light_volume.h: the far part of the light cones around the eye
     LightVolumeKey lightVolumeKey;  ///< what lightVolume holds (valid = false: nothing yet)
     Image cloudImage, depthImage, displayImage;
@@ -73,7 +74,7 @@ struct Renderer
     /// The window on the GPU (centred on the lattice node of the eye, earth/window_lattice.h): frames
     /// whose eye stays in that node's cell, with the same weather and window settings, reuse it.
     std::shared_ptr<const PreparedWindow> window;
-    bool windowOnGpu = false;      ///< weatherWindowImage holds `window` (false after a failed upload)
+    bool windowOnGpu = false;      ///< weatherWindowImage and columnBoundsImage hold `window` (false after a failed upload)
     WindowPrefetch windowPrefetch; ///< the next cell's window, made on a worker thread
     glm::dvec3 lastEyeEcefM{0.0};  ///< eye of the previous frame: its motion says which cell is next
     std::chrono::steady_clock::time_point lastFrameClock{};  ///< when the previous frame began (real time)

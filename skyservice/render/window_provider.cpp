@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/window_provider.h"
 
+#include "skyservice/render/column_bounds.h"
+
 #include <glm/gtc/packing.hpp>
 
 #include <algorithm>
@@ -50,6 +52,7 @@ std::shared_ptr<const PreparedWindow> prepareWindow(const WeatherSnapshot& weath
                           WEATHER_WINDOW_SIZE, key.warpRadiusM);
     computeAnvils(out->window);
     out->summary = summarizeWindow(out->window);
+    out->columnBounds = buildColumnBounds(out->window);
     const std::vector<glm::vec4>& t = out->window.texels;
     out->gpuTexelsHalf.resize(t.size() * 4);
     for (size_t i = 0; i < t.size(); ++i)

@@ -57,6 +57,8 @@ struct PreparedWindow
     /// window.texels as half floats, the layout of the GPU image (RGBA16F: half the bytes and twice the
     /// filtering rate of RGBA32F; altitudes keep 8 m steps up to 16 km, coverage 1/2048).
     std::vector<uint16_t> gpuTexelsHalf;
+    /// The column-bounds pyramid of `window` (column_bounds.h), the layout of its GPU image (R8G8_UINT).
+    std::vector<uint8_t> columnBounds;
 };
 
 /// The look-ahead distance (m) for an eye moving at `speedMps` (m/s): kWindowLookAheadS of motion,
@@ -75,7 +77,7 @@ std::optional<WindowCentre> nextWindowNode(const CameraFrame& camera, glm::dvec2
 /// on the frame path); 2.2 km cells take at most ~130 steps to leave.
 inline constexpr double kNextNodeStepM = 25.0;
 
-/// Resamples, derives the anvils and summarises (the CPU work of a window).
+/// Resamples, derives the anvils, summarises and bounds the columns (the CPU work of a window).
 std::shared_ptr<const PreparedWindow> prepareWindow(const WeatherSnapshot& weather, const WindowKey& key);
 
 /// The one window being prepared in the background, and counts for tests and benchmarks.

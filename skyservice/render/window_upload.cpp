@@ -37,6 +37,8 @@ SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const Qual
         const std::vector<uint16_t>& texels = r.window->gpuTexelsHalf;
         SKY_TRY(uploadImage(r.ctx, r.memory, r.weatherWindowImage, texels.data(), texels.size() * sizeof(uint16_t),
                             VK_IMAGE_LAYOUT_GENERAL));
+        const std::vector<uint8_t>& bounds = r.window->columnBounds;
+        SKY_TRY(uploadImage(r.ctx, r.memory, r.columnBoundsImage, bounds.data(), bounds.size(), VK_IMAGE_LAYOUT_GENERAL));
         r.windowOnGpu = true;
     }
     // The next node: the first one along the eye's horizontal motion, prefetched once it is within the

@@ -72,6 +72,8 @@ uint32_t formatBytes(VkFormat format)
     {
     case VK_FORMAT_R8_UNORM:
         return 1;
+    case VK_FORMAT_R8G8_UINT:
+        return 2;
     case VK_FORMAT_R8G8B8A8_UNORM:
     case VK_FORMAT_R8G8B8A8_SRGB:
     case VK_FORMAT_R32_SFLOAT:

@@ -180,6 +180,50 @@ TEST_F(GpuRender, CloudStepsConvergeOnFinerSteps)
     EXPECT_GE(cellPsnr, 38.0);
 }
 
+// Empty-space skipping (shaders/shared/column_bounds.h) changes only where the search samples, never
+// which clouds there are: the built-in weather toward the cumulonimbus from above the cumulus field, and
+// from FL350 over the deck, where rays graze the empty shell for 100+ km (most of the search skipped).
+// What differs is sampling noise at the far deck and the tower (with 1 frame instead of 4 accumulated:
+// 41.8 and 32.5 dB, with 4: 44.3 and 38.6 dB, the +3..6 dB of noise averaged down); the cloud pixels
+// agree within 0.06 % and the mean cloud luminance within 1 %. Skipping that hid the top 300 m of the
+// clouds failed the PSNR of the tower (40.6 dB); hiding the top 800 m failed both views (37.0, 29.9 dB).
+TEST_F(GpuRender, EmptySpaceSkippingDrawsTheSameClouds)
+{
+    WeatherSnapshot w = makeBuiltinWeather(0);
+    // A step budget that neither runs out of (with the test preset's 64, stepping every search sample ran
+    // out before the far deck: 23 dB, 3 % fewer cloud pixels than with skipping).
+    QualitySettings skipping = testQuality();
+    skipping.maxViewSteps = 512;
+    skipping.accumulationFrames = 4;
+    QualitySettings everyStep = skipping;
+    everyStep.emptySpaceSkipping = false;
+    ViewRequest cb = cumulonimbusView("2026-06-21T15:00:00Z");
+    ViewRequest fl350 = lookUp(kBuiltinDeckLatDeg, kBuiltinDeckLonDeg + 1.0, 10668.0, -8.0, "2026-06-21T09:30:00Z");
+    fl350.pose.headingDeg = 250.0;
+    fl350.fovYDeg = 70.0;
+    const struct
+    {
+        ViewRequest view;
+        double minPsnr;
+    } cases[] = {{cb, 42.0}, {fl350, 35.0}};
+    for (const auto& c : cases)
+    {
+        ViewRequest v = c.view;
+        v.width = 160;
+        v.height = 90;
+        RenderResult skipped = render(w, v, skipping);
+        RenderResult stepped = render(w, v, everyStep);
+        ImageStats a = cloudStats(skipped), b = cloudStats(stepped);
+        double psnr = psnrCloud(skipped, stepped);
+        std::printf("skipping against every step: %.2f dB, cloud pixels %u against %u\n", psnr, a.cloudPixels,
+                    b.cloudPixels);
+        ASSERT_GT(b.cloudPixels, 2000u);
+        EXPECT_GE(psnr, c.minPsnr);
+        EXPECT_NEAR(double(a.cloudPixels), double(b.cloudPixels), 0.005 * double(b.cloudPixels));
+        EXPECT_NEAR(a.meanCloudLuminance, b.meanCloudLuminance, 0.01 * b.meanCloudLuminance);
+    }
+}
+
 TEST_F(GpuRender, SunsetLightIsRedderThanNoonLight)
 {
     WeatherSnapshot w = uniformLayer(0.9f, CloudType::Stratocumulus, 900.0f, 1700.0f);

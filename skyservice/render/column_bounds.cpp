@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: MIT
+#include "skyservice/render/column_bounds.h"
+
+#include "shaders/shared/column_bounds.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace sky
+{
+namespace
+{
+
+constexpr uint8_t kEmptyBase = 255;  // with kEmptyTop: no cloud in the column
+constexpr uint8_t kEmptyTop = 0;
+
+uint8_t encodeBase(float baseM)
+{
+    if (!std::isfinite(baseM))
+        return 0;  // unknown: no lower bound
+    double units = std::floor(double(baseM) / double(COLUMN_BOUNDS_UNIT_M)) - 1.0;
+    return uint8_t(std::clamp(units, 0.0, 255.0));
+}
+
+uint8_t encodeTop(float topM)
+{
+    if (!std::isfinite(topM))
+        return 255;  // unknown: no upper bound
+    double units = std::ceil(double(topM) / double(COLUMN_BOUNDS_UNIT_M)) + 1.0;
+    return uint8_t(std::clamp(units, 1.0, 255.0));
+}
+
+}  // namespace
+
+std::vector<uint8_t> buildColumnBounds(const WeatherWindow& window)
+{
+    const uint32_t n = window.sizeTexels;
+    const uint32_t width = columnBoundsWidth(n);
+    std::vector<uint8_t> atlas(size_t(width) * n * 2, 0);
+    // Level 0: per texel, over the layers (and the anvil slab) that reach CLOUD_COVERAGE_MIN anywhere in
+    // the 3x3 neighbourhood, the lowest base and highest top of that neighbourhood: a bilinear lookup
+    // inside the texel's cell mixes only those texels (shaders/shared/column_bounds.h).
+    std::vector<uint8_t> base(size_t(n) * n, kEmptyBase), top(size_t(n) * n, kEmptyTop);
+    for (int k = 0; k <= MAX_CLOUD_LAYERS; ++k)
+    {
+        const uint32_t slice = k == MAX_CLOUD_LAYERS ? uint32_t(WEATHER_WINDOW_ANVIL_SLICE) : uint32_t(2 * k);
+        for (uint32_t j = 0; j < n; ++j)
+            for (uint32_t i = 0; i < n; ++i)
+            {
+                bool covered = false;
+                float lo = std::numeric_limits<float>::infinity(), hi = -std::numeric_limits<float>::infinity();
+                for (uint32_t b = j > 0 ? j - 1 : 0; b <= std::min(j + 1, n - 1); ++b)
+                    for (uint32_t a = i > 0 ? i - 1 : 0; a <= std::min(i + 1, n - 1); ++a)
+                    {
+                        const glm::vec4& t = window.at(slice, a, b);
+                        // NaN coverage counts as covered: the bound must never hide a cloud.
+                        covered = covered || !(t.x < CLOUD_COVERAGE_MIN);
+                        lo = std::isfinite(t.y) ? std::min(lo, t.y) : -std::numeric_limits<float>::infinity();
+                        hi = std::isfinite(t.z) ? std::max(hi, t.z) : std::numeric_limits<float>::infinity();
+                    }
+                if (!covered)
+                    continue;
+                const size_t c = size_t(j) * n + i;
+                base[c] = std::min(base[c], encodeBase(lo));
+                top[c] = std::max(top[c], encodeTop(hi));
+            }
+    }
+    auto store = [&](int level, uint32_t i, uint32_t j, uint8_t b, uint8_t t) {
+        const ivec2 o = columnBoundsLevelOrigin(level, int(n));
+        const size_t at = (size_t(uint32_t(o.y) + j) * width + uint32_t(o.x) + i) * 2;
+        atlas[at] = b;
+        atlas[at + 1] = t;
+    };
+    for (uint32_t j = 0; j < n; ++j)
+        for (uint32_t i = 0; i < n; ++i)
+            store(0, i, j, base[size_t(j) * n + i], top[size_t(j) * n + i]);
+    // Levels 1..: min of the bases, max of the tops of each 2x2 of the level below.
+    uint32_t side = n;
+    for (int level = 1; side > 1; ++level)
+    {
+        const uint32_t half = side / 2;
+        std::vector<uint8_t> b2(size_t(half) * half), t2(size_t(half) * half);
+        for (uint32_t j = 0; j < half; ++j)
+            for (uint32_t i = 0; i < half; ++i)
+            {
+                uint8_t b = kEmptyBase, t = kEmptyTop;
+                for (uint32_t dj = 0; dj < 2; ++dj)
+                    for (uint32_t di = 0; di < 2; ++di)
+                    {
+                        const size_t c = size_t(2 * j + dj) * side + 2 * i + di;
+                        b = std::min(b, base[c]);
+                        t = std::max(t, top[c]);
+                    }
+                b2[size_t(j) * half + i] = b;
+                t2[size_t(j) * half + i] = t;
+                store(level, i, j, b, t);
+            }
+        base = std::move(b2);
+        top = std::move(t2);
+        side = half;
+    }
+    return atlas;
+}
+
+ColumnBound columnBoundAt(const std::vector<uint8_t>& atlas, uint32_t size, int level, uint32_t i, uint32_t j)
+{
+    const ivec2 o = columnBoundsLevelOrigin(level, int(size));
+    const size_t at = (size_t(uint32_t(o.y) + j) * columnBoundsWidth(size) + uint32_t(o.x) + i) * 2;
+    const uint8_t b = atlas[at], t = atlas[at + 1];
+    const float inf = std::numeric_limits<float>::infinity();
+    return {b == 0 ? -inf : float(b) * COLUMN_BOUNDS_UNIT_M,
+            t == 0 ? -inf : t == 255 ? inf : float(t) * COLUMN_BOUNDS_UNIT_M};
+}
+
+}  // namespace sky
