@@ -75,6 +75,12 @@ struct QualitySettings
     /// The march's search jumps over stretches that the weather's column bounds show empty
     /// (shaders/shared/column_bounds.h); false samples every search step (tests, A/B).
     bool emptySpaceSkipping = true;
+    /// Reprojected frames march one pixel of every NxN block with the eye inside a cloud layer (between
+    /// its base and top, reprojection.h): 2 (a quarter of the pixels, 4x those of the usual 4x4 block), or
+    /// 1 (every pixel: the frame equals a full render). Flying through the deck (tests/gpu/
+    /// test_flight_path.cpp) block 2 keeps every frame's display image 45+ dB of the full render; in
+    /// fog a pixel's radiance comes from the first ~100 m of cloud, which moves little per frame.
+    uint32_t insideCloudBlockPx = 2;
     bool highCloud = true;               ///< cirrus layer on
     uint32_t accumulationFrames = 1;     ///< frames averaged, each with new march jitter and sub-pixel offset
     uint32_t shadowSteps = 48;           ///< density samples per shadow-map texel along the light ray

@@ -260,7 +260,8 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     SKY_TRY(ensureOutputImages(r, request.width, request.height, !quality.reprojected, quality.linearOutput));
     if (quality.reprojected)
     {
-        r.reprojection.block = chooseMarchBlock(window, camera.eye.altitudeM, eyeOnWindow.offsetM);
+        r.reprojection.block =
+            chooseMarchBlock(window, camera.eye.altitudeM, eyeOnWindow.offsetM, quality.insideCloudBlockPx);
         SKY_TRY(ensureReprojectionImages(r, request.width, request.height, r.reprojection.block.blockPx));
     }
 

@@ -38,9 +38,11 @@ glm::uvec2 reprojectionPhase(uint32_t frameIndex, uint32_t blockPx)
     return {0, 0};  // unreachable: the matrix holds 0..15
 }
 
-MarchBlock chooseMarchBlock(const WeatherWindow& window, double eyeAltitudeM, const glm::dvec2& eyeOnWindowM)
+MarchBlock chooseMarchBlock(const WeatherWindow& window, double eyeAltitudeM, const glm::dvec2& eyeOnWindowM,
+                            uint32_t insideBlockPx)
 {
     MarchBlock best;
+    bool bestInside = false;
     if (window.sizeTexels == 0 || window.texels.empty())
         return best;
     // Texels whose true position lies within the radius of the eye (the warp makes the texels near the
@@ -73,14 +75,18 @@ MarchBlock chooseMarchBlock(const WeatherWindow& window, double eyeAltitudeM, co
         if (coverage <= 0.0f)
             continue;
         uint32_t block = 4;
-        if (eyeAltitudeM >= base && eyeAltitudeM <= top)
-            block = 1;
+        const bool inside = eyeAltitudeM >= base && eyeAltitudeM <= top;
+        if (inside)
+            block = std::clamp(insideBlockPx, 1u, 2u);
         else if (eyeAltitudeM >= base - kNearCloudM && eyeAltitudeM <= top + kNearCloudM)
             block = 2;
-        if (block >= best.blockPx)
+        // The smallest block wins; at the same block, being inside a layer names the reason.
+        const bool better = block < best.blockPx || (block == best.blockPx && block < 4 && inside && !bestInside);
+        if (!better)
             continue;
+        bestInside = inside;
         std::snprintf(text, sizeof text, "eye %s cloud layer %u (%.0f-%.0f m, coverage %.2f)",
-                      block == 1 ? "inside" : "near", k, base, top, double(coverage));
+                      inside ? "inside" : "near", k, base, top, double(coverage));
         best.blockPx = block;
         best.reason = text;
     }

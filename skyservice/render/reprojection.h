@@ -34,8 +34,8 @@ constexpr double kReprojectionMaxTimeJumpS = 60.0;
 /// frame and uncover what history never saw (our choice: at 250 m/s a cloud 300 m away moves ~0.8
 /// degrees per 60 Hz frame).
 constexpr double kNearCloudM = 300.0;
-/// ... and every pixel (block 1) when it is between a layer's base and top: inside a cloud the nearest
-/// cloud is metres away and reprojection has nothing to offer.
+/// ... and inside a layer (between its base and top) as well by default: QualitySettings::insideCloudBlockPx
+/// (2, or 1 for every pixel) says why.
 /// "Around the eye" is this far horizontally (m): the weather window's texels near the eye are ~1 km.
 constexpr double kNearCloudRadiusM = 2000.0;
 /// Coverage below this counts as clear air for that decision.
@@ -66,13 +66,13 @@ struct ReprojectionHistory
 glm::uvec2 reprojectionPhase(uint32_t frameIndex, uint32_t blockPx = 4);
 
 /**
- * The march block for an eye at `eyeAltitudeM` (m above the ellipsoid) in `window`: 1 inside a
- * volumetric layer (between its base and top, coverage above kNearCloudMinCoverage within
+ * The march block for an eye at `eyeAltitudeM` (m above the ellipsoid) in `window`: `insideBlockPx` (2 or
+ * 1) inside a volumetric layer (between its base and top, coverage above kNearCloudMinCoverage within
  * kNearCloudRadiusM), 2 within kNearCloudM of such a layer, else 4. `eyeOnWindowM` is where the eye lies
  * on the window plane (m; earth/window_lattice.h: windows are centred on a lattice node near the eye).
  */
 MarchBlock chooseMarchBlock(const WeatherWindow& window, double eyeAltitudeM,
-                            const glm::dvec2& eyeOnWindowM = glm::dvec2(0.0));
+                            const glm::dvec2& eyeOnWindowM = glm::dvec2(0.0), uint32_t insideBlockPx = 2);
 
 /// Whether the last frame can be reprojected into `view`. If not, `why` names the reason (first frame,
 /// size or field of view change, eye moved, turned, or time jumped beyond the limits above).

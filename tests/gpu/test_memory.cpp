@@ -73,7 +73,8 @@ TEST_F(Memory, LinearFrameOnlyWhileFramesAskForIt)
     }
 }
 
-// Inside a stratus deck every pixel is marched (block 1): the fresh images are full size. 1000 m above
+// Inside a stratus deck with every pixel marched there (block 1, insideCloudBlockPx 1): the fresh images
+// are full size. 1000 m above
 // its top (beyond the 300 m near zone, within the 5 km history limit) the block is 4 again: they
 // shrink back to one pixel per 4x4 block, and the history survives.
 TEST_F(Memory, FreshImagesShrinkWhenTheEyeLeavesTheCloudAndHistoryStays)
@@ -84,6 +85,7 @@ TEST_F(Memory, FreshImagesShrinkWhenTheEyeLeavesTheCloudAndHistoryStays)
     v.height = 36;
     QualitySettings q = reprojectedQuality();
     q.linearOutput = false;
+    q.insideCloudBlockPx = 1;
     RenderResult inside = renderOk(v, q);
     ASSERT_EQ(inside.marchBlockPx, 1u) << inside.marchBlockReason;
     EXPECT_EQ(renderer->freshCloudImage.extent.width, v.width);
