@@ -76,8 +76,9 @@ MarchBlock chooseMarchBlock(const WeatherWindow& window, double eyeAltitudeM, co
             continue;
         uint32_t block = 4;
         const bool inside = eyeAltitudeM >= base && eyeAltitudeM <= top;
+        const bool overcast = coverage >= kOvercastCoverage;
         if (inside)
-            block = std::clamp(insideBlockPx, 1u, 2u);
+            block = overcast ? std::clamp(insideBlockPx, 1u, 2u) : 1u;
         else if (eyeAltitudeM >= base - kNearCloudM && eyeAltitudeM <= top + kNearCloudM)
             block = 2;
         // The smallest block wins; at the same block, being inside a layer names the reason.
@@ -86,7 +87,7 @@ MarchBlock chooseMarchBlock(const WeatherWindow& window, double eyeAltitudeM, co
             continue;
         bestInside = inside;
         std::snprintf(text, sizeof text, "eye %s cloud layer %u (%.0f-%.0f m, coverage %.2f)",
-                      inside ? "inside" : "near", k, base, top, double(coverage));
+                      inside ? (overcast ? "inside overcast" : "inside") : "near", k, base, top, double(coverage));
         best.blockPx = block;
         best.reason = text;
     }

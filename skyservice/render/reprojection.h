@@ -34,8 +34,13 @@ constexpr double kReprojectionMaxTimeJumpS = 60.0;
 /// frame and uncover what history never saw (our choice: at 250 m/s a cloud 300 m away moves ~0.8
 /// degrees per 60 Hz frame).
 constexpr double kNearCloudM = 300.0;
-/// ... and inside a layer (between its base and top) as well by default: QualitySettings::insideCloudBlockPx
-/// (2, or 1 for every pixel) says why.
+/// ... and every pixel (block 1) when it is between a layer's base and top: in a broken or scattered
+/// layer the eye flies between clouds whose edges are metres to a few km away (a quarter of the pixels
+/// per frame dithered them at 150 m/s in ./sky run's demo).
+/// Inside an overcast layer (coverage around the eye at least this) the view is fog a few tens of metres
+/// deep, whose radiance comes from the first ~100 m of cloud: there QualitySettings::insideCloudBlockPx
+/// (2 by default, a quarter of the pixels) applies.
+constexpr float kOvercastCoverage = 0.8f;
 /// "Around the eye" is this far horizontally (m): the weather window's texels near the eye are ~1 km.
 constexpr double kNearCloudRadiusM = 2000.0;
 /// Coverage below this counts as clear air for that decision.
@@ -66,9 +71,10 @@ struct ReprojectionHistory
 glm::uvec2 reprojectionPhase(uint32_t frameIndex, uint32_t blockPx = 4);
 
 /**
- * The march block for an eye at `eyeAltitudeM` (m above the ellipsoid) in `window`: `insideBlockPx` (2 or
- * 1) inside a volumetric layer (between its base and top, coverage above kNearCloudMinCoverage within
- * kNearCloudRadiusM), 2 within kNearCloudM of such a layer, else 4. `eyeOnWindowM` is where the eye lies
+ * The march block for an eye at `eyeAltitudeM` (m above the ellipsoid) in `window`: inside a volumetric
+ * layer (between its base and top, coverage above kNearCloudMinCoverage within kNearCloudRadiusM) 1, or
+ * `insideBlockPx` (2 or 1) where that coverage reaches kOvercastCoverage; 2 within kNearCloudM of such a
+ * layer, else 4. `eyeOnWindowM` is where the eye lies
  * on the window plane (m; earth/window_lattice.h: windows are centred on a lattice node near the eye).
  */
 MarchBlock chooseMarchBlock(const WeatherWindow& window, double eyeAltitudeM,

@@ -39,9 +39,9 @@ void stepPose(ViewRequest& view, const Motion& motion)
 }
 
 FlightStats flySegment(Renderer& r, ViewRequest& view, const Motion& motion, int warmFrames, int measuredFrames,
-                       const std::string& name, const std::string& pngPath, const QualitySettings& reprojected)
+                       const std::string& name, const std::string& pngPath)
 {
-    QualitySettings full = testQuality();
+    QualitySettings full = testQuality(), reprojected = reprojectedQuality();
     FlightStats stats;
     for (int k = 0; k < warmFrames; ++k)
     {

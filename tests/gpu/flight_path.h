@@ -5,7 +5,6 @@
 #pragma once
 
 #include "skyservice/render/renderer.h"
-#include "tests/gpu/scenes.h"
 
 #include <string>
 
@@ -53,7 +52,6 @@ constexpr uint32_t kEdgeBandPx = 8;
  * last reprojected frame is written there and its full render beside it ("...-full.png"), 4x enlarged.
  */
 FlightStats flySegment(Renderer& r, ViewRequest& view, const Motion& motion, int warmFrames, int measuredFrames,
-                       const std::string& name, const std::string& pngPath = "",
-                       const QualitySettings& reprojected = reprojectedQuality());
+                       const std::string& name, const std::string& pngPath = "");
 
 }  // namespace sky::testscenes

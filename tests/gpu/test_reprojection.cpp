@@ -228,17 +228,22 @@ TEST(ReprojectionCpu, MarchBlockIsFinerNearAndInsideACloudLayer)
     {
         double altitudeM;
         uint32_t blockPx;
-    } cases[] = {{1000.0, 4}, {1250.0, 2}, {1500.0, 2}, {1800.0, 2}, {2300.0, 2}, {2500.0, 4}, {9000.0, 4}};
+    } cases[] = {{1000.0, 4}, {1250.0, 2}, {1500.0, 1}, {1800.0, 1}, {2300.0, 2}, {2500.0, 4}, {9000.0, 4}};
     for (const Case& c : cases)
     {
         MarchBlock b = chooseMarchBlock(window, c.altitudeM);
         EXPECT_EQ(b.blockPx, c.blockPx) << c.altitudeM << " m: " << b.reason;
         EXPECT_EQ(b.reason.empty(), c.blockPx == 4) << b.reason;
-        bool inside = c.altitudeM >= 1500.0 && c.altitudeM <= 2100.0;
-        EXPECT_EQ(b.reason.find("inside") != std::string::npos, inside) << b.reason;
-        // Every pixel inside the layer when asked for (QualitySettings::insideCloudBlockPx 1).
-        EXPECT_EQ(chooseMarchBlock(window, c.altitudeM, glm::dvec2(0.0), 1).blockPx, inside ? 1u : c.blockPx);
     }
+    // Inside an overcast layer (coverage >= kOvercastCoverage around the eye) a quarter of the pixels by
+    // default (QualitySettings::insideCloudBlockPx 2), every pixel when asked for (1); near it still 2.
+    resampleWeatherWindow(uniformLayer(0.9f, CloudType::Stratocumulus, 1500.0f, 2100.0f), 45.0, 7.0, 800000.0,
+                          window, WEATHER_WINDOW_SIZE, 150000.0);
+    MarchBlock fog = chooseMarchBlock(window, 1800.0);
+    EXPECT_EQ(fog.blockPx, 2u) << fog.reason;
+    EXPECT_NE(fog.reason.find("inside overcast"), std::string::npos) << fog.reason;
+    EXPECT_EQ(chooseMarchBlock(window, 1800.0, glm::dvec2(0.0), 1).blockPx, 1u);
+    EXPECT_EQ(chooseMarchBlock(window, 1250.0, glm::dvec2(0.0), 1).blockPx, 2u);
     resampleWeatherWindow(clearSky(), 45.0, 7.0, 800000.0, window, WEATHER_WINDOW_SIZE, 150000.0);
     EXPECT_EQ(chooseMarchBlock(window, 1800.0).blockPx, 4u) << "no cloud around the eye";
 
@@ -247,6 +252,6 @@ TEST(ReprojectionCpu, MarchBlockIsFinerNearAndInsideACloudLayer)
     resampleWeatherWindow(isolatedCell(45.0, 7.04, 1000.0, CloudType::Cumulus, 1500.0f, 2100.0f), 45.0, 7.0,
                           800000.0, window, WEATHER_WINDOW_SIZE, 150000.0);
     EyeOnWindow inCell = placeEyeOnWindow(45.0, 7.0, 45.0, 7.04);
-    EXPECT_EQ(chooseMarchBlock(window, 1800.0, inCell.offsetM, 1).blockPx, 1u) << "eye in the cell";
+    EXPECT_EQ(chooseMarchBlock(window, 1800.0, inCell.offsetM, 1).blockPx, 1u) << "eye in the cell, every pixel";
     EXPECT_EQ(chooseMarchBlock(window, 1800.0).blockPx, 4u) << "an eye at the window centre is 3.2 km from it";
 }
