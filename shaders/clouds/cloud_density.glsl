@@ -113,7 +113,7 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         if (h < range.x || h > range.y)
             continue;
         bool anvilSlab = k == MAX_CLOUD_LAYERS;
-        vec4 layer = textureLod(weatherWindow, vec3(w.uv, float(anvilSlab ? WEATHER_WINDOW_ANVIL_SLICE : 2 * k)), 0.0f);
+        vec4 layer = textureLod(weatherWindow, vec3(w.uv, float(anvilSlab ? WEATHER_GPU_ANVIL_SLICE : k)), 0.0f);
         float coverage = layer.x;
         float base = layer.y;
         float top = layer.z;
@@ -122,7 +122,7 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         s.inLayer = true;
         float hf = (h - base) / (top - base);
         int cloudType = anvilSlab ? CLOUD_TYPE_CUMULONIMBUS
-                                  : int(texelFetch(weatherWindow, ivec3(w.texel, 2 * k), 0).w + 0.5f);
+                                  : int(texelFetch(weatherWindow, ivec3(w.texel, k), 0).w + 0.5f);
         vec3 shear = vec3(frame.layerShearM[k].xy * hf, 0.0f);
         vec3 noisePos = toNoiseFrame(-shear) + noiseRel + frame.layerNoiseOffsetM[k].xyz;
         // The base shape varies slowly with height: its lookup point slides down the local vertical
@@ -166,7 +166,7 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
             best = d;
             s.heightFraction = hf;
             if (!cheap && !anvilSlab)
-                s.rainMmH = textureLod(weatherWindow, vec3(w.uv, float(2 * k + 1)), 0.0f).z;
+                s.rainMmH = textureLod(weatherWindow, vec3(w.uv, float(WEATHER_GPU_PRECIP_SLICE)), 0.0f)[k];
         }
     }
     return s;

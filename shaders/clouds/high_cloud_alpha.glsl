@@ -11,12 +11,12 @@ float highCloudAlpha(vec3 p)
     WeatherLookup w = weatherLookup(weatherMapPosition(p, h));
     if (!w.inside)
         return 0.0f;
-    vec4 high = textureLod(weatherWindow, vec3(w.uv, float(WEATHER_WINDOW_HIGH_SLICE)), 0.0f);
+    vec4 high = textureLod(weatherWindow, vec3(w.uv, float(WEATHER_GPU_HIGH_SLICE)), 0.0f);
     float coverage = high.x;
     if (coverage < 0.01f)
         return 0.0f;
-    int cloudType = int(texelFetch(weatherWindow, ivec3(w.texel, WEATHER_WINDOW_HIGH_SLICE), 0).z + 0.5f);
-    vec2 wind = textureLod(weatherWindow, vec3(w.uv, float(WEATHER_WINDOW_HIGH_SLICE + 1)), 0.0f).xy;
+    int cloudType = int(texelFetch(weatherWindow, ivec3(w.texel, WEATHER_GPU_HIGH_SLICE), 0).z + 0.5f);
+    vec2 wind = textureLod(weatherWindow, vec3(w.uv, float(WEATHER_GPU_HIGH_WIND_SLICE)), 0.0f).xy;
 
     vec3 q = toNoiseFrame(p) + frame.layerNoiseOffsetM[MAX_CLOUD_LAYERS].xyz;
     float period = frame.noiseScale.w;

@@ -26,6 +26,19 @@
 #define WEATHER_WINDOW_ANVIL_SLICE (2 * MAX_CLOUD_LAYERS + 2)
 #define WEATHER_WINDOW_SLICES (2 * MAX_CLOUD_LAYERS + 3)
 
+// The GPU copy of the window holds only what the shaders read (the layers' winds and CAPE serve the CPU:
+// anvils, wind drift), in WEATHER_GPU_SLICES slices of the same texels (skyservice/render/
+// window_provider.cpp packs it; 3 slices, 1.6 MB, fewer than the window's):
+//   slice k (k < MAX_CLOUD_LAYERS): the window's slice 2k (coverage, base, top, type)
+//   WEATHER_GPU_PRECIP_SLICE:       precipitation rate (mm/h) of layers 0..3 in x, y, z, w
+//   WEATHER_GPU_HIGH_SLICE, WEATHER_GPU_HIGH_WIND_SLICE, WEATHER_GPU_ANVIL_SLICE: the window's high,
+//                                   high + 1 and anvil slices
+#define WEATHER_GPU_PRECIP_SLICE MAX_CLOUD_LAYERS
+#define WEATHER_GPU_HIGH_SLICE (MAX_CLOUD_LAYERS + 1)
+#define WEATHER_GPU_HIGH_WIND_SLICE (MAX_CLOUD_LAYERS + 2)
+#define WEATHER_GPU_ANVIL_SLICE (MAX_CLOUD_LAYERS + 3)
+#define WEATHER_GPU_SLICES (MAX_CLOUD_LAYERS + 4)
+
 // Coverage below which a layer draws nothing (cloudDensity skips it; column_bounds.h counts from it).
 #define CLOUD_COVERAGE_MIN 0.01f
 

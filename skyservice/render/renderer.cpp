@@ -155,7 +155,7 @@ SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
     d.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
     d.format = VK_FORMAT_R16G16B16A16_SFLOAT;  // window_provider.h says why half floats
     d.width = d.height = WEATHER_WINDOW_SIZE;
-    d.layers = WEATHER_WINDOW_SLICES;
+    d.layers = WEATHER_GPU_SLICES;
     d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
     SKY_TRY(createImage(r.ctx, r.memory, r.weatherWindowImage, d, "weather window"));
     d = ImageDesc{};

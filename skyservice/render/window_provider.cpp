@@ -53,11 +53,29 @@ std::shared_ptr<const PreparedWindow> prepareWindow(const WeatherSnapshot& weath
     computeAnvils(out->window);
     out->summary = summarizeWindow(out->window);
     out->columnBounds = buildColumnBounds(out->window);
-    const std::vector<glm::vec4>& t = out->window.texels;
-    out->gpuTexelsHalf.resize(t.size() * 4);
-    for (size_t i = 0; i < t.size(); ++i)
-        for (int c = 0; c < 4; ++c)  // within half range (65504): no window value comes near it
-            out->gpuTexelsHalf[4 * i + size_t(c)] = glm::packHalf1x16(std::clamp(t[i][c], -65504.0f, 65504.0f));
+    // The GPU copy: the slices the shaders read (shaders/shared/weather_window.h "The GPU copy").
+    const WeatherWindow& w = out->window;
+    const size_t texelsPerSlice = size_t(w.sizeTexels) * w.sizeTexels;
+    out->gpuTexelsHalf.resize(size_t(WEATHER_GPU_SLICES) * texelsPerSlice * 4);
+    auto put = [&](uint32_t gpuSlice, size_t texel, int channel, float value) {
+        // within half range (65504): no window value comes near it
+        out->gpuTexelsHalf[(gpuSlice * texelsPerSlice + texel) * 4 + size_t(channel)] =
+            glm::packHalf1x16(std::clamp(value, -65504.0f, 65504.0f));
+    };
+    auto copySlice = [&](uint32_t gpuSlice, uint32_t windowSlice) {
+        for (size_t i = 0; i < texelsPerSlice; ++i)
+            for (int c = 0; c < 4; ++c)
+                put(gpuSlice, i, c, w.texels[windowSlice * texelsPerSlice + i][c]);
+    };
+    for (uint32_t k = 0; k < MAX_CLOUD_LAYERS; ++k)
+    {
+        copySlice(k, 2 * k);
+        for (size_t i = 0; i < texelsPerSlice; ++i)
+            put(WEATHER_GPU_PRECIP_SLICE, i, int(k), w.texels[(2 * k + 1) * texelsPerSlice + i].z);
+    }
+    copySlice(WEATHER_GPU_HIGH_SLICE, WEATHER_WINDOW_HIGH_SLICE);
+    copySlice(WEATHER_GPU_HIGH_WIND_SLICE, WEATHER_WINDOW_HIGH_SLICE + 1);
+    copySlice(WEATHER_GPU_ANVIL_SLICE, WEATHER_WINDOW_ANVIL_SLICE);
     return out;
 }
 

@@ -54,8 +54,9 @@ struct PreparedWindow
     WindowKey key;
     WeatherWindow window;
     WindowSummary summary;
-    /// window.texels as half floats, the layout of the GPU image (RGBA16F: half the bytes and twice the
-    /// filtering rate of RGBA32F; altitudes keep 8 m steps up to 16 km, coverage 1/2048).
+    /// The slices of window.texels the shaders read, as half floats in the layout of the GPU image
+    /// (shaders/shared/weather_window.h "The GPU copy"; RGBA16F: half the bytes and twice the filtering
+    /// rate of RGBA32F; altitudes keep 8 m steps up to 16 km, coverage 1/2048).
     std::vector<uint16_t> gpuTexelsHalf;
     /// The column-bounds pyramid of `window` (column_bounds.h), the layout of its GPU image (R8G8_UINT).
     std::vector<uint8_t> columnBounds;
