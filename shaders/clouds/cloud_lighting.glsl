@@ -17,9 +17,9 @@ vec3 keyLightAt(vec3 p, vec3 lightDir)
 
 // The light cone of one lit view sample: optical depth toward the light from 6 samples in a widening
 // cone, then one long sample at 3x the cone length (Schneider 2015); cheap density once the path is
-// already dense, and beyond the first frame.marchLod.w samples. Near the eye those cheap far samples come
-// precomputed from the light volume (shaders/shared/light_volume.h): one fetch instead of 5 density
-// lookups. Beyond frame.marchLod.z metres (0: never) 3 cheap samples cover the same cone: there a pixel
+// already dense, and beyond the first frame.marchLod.w samples. Within 30 km of the eye those cheap far
+// samples come precomputed from the light volume or its far cascade (shaders/shared/light_volume.h): one
+// fetch instead of 5 density lookups. Beyond frame.marchLod.z metres (0: never) 3 cheap samples cover the same cone: there a pixel
 // spans tens of metres and the view samples are far apart. The march takes the cone's density lookups
 // one per loop iteration (marchClouds says why), so the cone is a small state.
 struct LightCone
@@ -55,10 +55,16 @@ LightCone beginLightCone(vec3 p, float distanceM)
         float h;
         vec2 mapPosM = weatherMapPosition(p, h);
         vec3 uvw;
-        if (lightVolumeCoordinates(windowPlanePosition(mapPosM), h, uvw))
+        vec2 planeM = windowPlanePosition(mapPosM);
+        if (lightVolumeCoordinates(frame.lightVolume, planeM, h, uvw))
         {
             c.live = c.detailed;
             c.tailTransmittance = textureLod(lightVolume, uvw, 0.0f).x;
+        }
+        else if (lightVolumeCoordinates(frame.lightVolumeFar, planeM, h, uvw))
+        {
+            c.live = c.detailed;
+            c.tailTransmittance = textureLod(lightVolumeFar, uvw, 0.0f).x;
         }
     }
     c.next = 0u;

@@ -35,6 +35,8 @@ layout(binding = 9, r32f) uniform writeonly image2D depthOut;
 layout(binding = 10) uniform sampler3D lightVolume;
 // The weather window's column-bounds pyramid (column_bounds.h): empty-space skipping in the search.
 layout(binding = 11) uniform usampler2D columnBounds;
+// The light volume's far cascade (640 m texels; frame.lightVolumeFar.z 0: none this frame).
+layout(binding = 12) uniform sampler3D lightVolumeFar;
 
 #include "shaders/lib/atmosphere_sampling.glsl"
 #include "shaders/clouds/cloud_density.glsl"

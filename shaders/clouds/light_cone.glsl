@@ -40,12 +40,14 @@ float coneTailDepth(vec3 p, vec3 lightDir, uint first, uint samples, float stepM
     return depth + cloudDensity(p + lightDir * (3.0f * t), true, 0.0f).density * t;
 }
 
-// Light-volume coordinates of a point at window-plane position `planeM` and altitude `altitudeM`; false
-// when it lies outside the volume's texel centres (the march then takes the live cone) or the volume is off.
-bool lightVolumeCoordinates(vec2 planeM, float altitudeM, out vec3 uvw)
+// Coordinates in the light volume placed at `placement` (frame.lightVolume or frame.lightVolumeFar: xy
+// corner, z texel size) of a point at window-plane position `planeM` and altitude `altitudeM`; false when
+// it lies outside the volume's texel centres (the march then tries the next, or takes the live cone) or
+// the volume is off.
+bool lightVolumeCoordinates(vec4 placement, vec2 planeM, float altitudeM, out vec3 uvw)
 {
-    float texelM = frame.lightVolume.z;
-    vec2 uv = (planeM - frame.lightVolume.xy) / (texelM * float(LIGHT_VOLUME_SIZE));
+    float texelM = placement.z;
+    vec2 uv = (planeM - placement.xy) / (texelM * float(LIGHT_VOLUME_SIZE));
     float w = (altitudeM - frame.shell.x) / max(frame.shell.y - frame.shell.x, 1.0f);
     uvw = vec3(uv, w);
     float margin = 0.5f / float(LIGHT_VOLUME_SIZE);

@@ -19,6 +19,8 @@ layout(binding = 2) uniform sampler3D baseNoise;
 layout(binding = 3) uniform sampler3D detailNoise;  // not read (cheap density only); cloud_density.glsl names it
 layout(binding = 4) uniform sampler2D curlNoise;    // idem
 layout(binding = 5, r16f) uniform writeonly image3D lightVolumeOut;
+// Which volume this dispatch fills: 0 the light volume (frame.lightVolume), 1 its far cascade.
+layout(push_constant) uniform LightVolumePush { uint cascade; } push;
 
 #include "shaders/clouds/cloud_density.glsl"
 #include "shaders/clouds/light_cone.glsl"
@@ -42,7 +44,8 @@ void main()
     ivec3 texel = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(texel, ivec3(LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS))))
         return;
-    vec2 planeM = frame.lightVolume.xy + (vec2(texel.xy) + 0.5f) * frame.lightVolume.z;
+    vec4 placement = push.cascade == 0u ? frame.lightVolume : frame.lightVolumeFar;
+    vec2 planeM = placement.xy + (vec2(texel.xy) + 0.5f) * placement.z;
     // Map position from the window plane: invert planeM = windowOffsetM + A mapPosM, A = [axes.xy axes.zw].
     vec2 a = frame.windowAxes.xy;
     vec2 b = frame.windowAxes.zw;

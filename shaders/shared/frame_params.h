@@ -65,6 +65,8 @@ struct FrameParams
     // never; QualitySettings::detailMinTransmittance); y: those samples step this many times further; z: a
     // step inside a cloud covers at most this optical depth (0: no limit; maxStepOpticalDepth); w: unused.
     vec4 detailLod;
+    // The light volume's far cascade (light_volume.h), as lightVolume: xy corner, z texel size (m; 0: none).
+    vec4 lightVolumeFar;
 };
 
 // frame flags

@@ -21,4 +21,11 @@
 #define LIGHT_VOLUME_SIZE 96     // texels per side on the window plane (96 x 160 m: 7.7 km around the eye)
 #define LIGHT_VOLUME_LEVELS 24   // altitude levels over the cloud shell
 
+// The far cascade: a second volume of the same size whose texels are this many times wider (320 m: 15.4
+// km around the eye), placed in frame.lightVolumeFar, read where a lit sample lies outside the first.
+// Beyond 7.7 km those samples marched the whole cone (7 lookups). At 4 (640 m, 30.7 km) the cascade
+// flattened the shading of clouds 8-30 km away: the sunlit/shadow side ratio of a cumulus 12 km off fell
+// from 1.39 to 1.23 (tests/gpu/test_render.cpp SunSide...); at 2 it is 1.35 (BENCHMARKS.md).
+#define LIGHT_VOLUME_FAR_SCALE 2
+
 #endif

@@ -65,6 +65,7 @@ struct BenchOptions
     double detailFadeStartM = -1, detailFadeEndM = -1;
     bool noDetail = false;
     bool noSkipping = false;
+    bool noFarLightVolume = false;
     uint32_t gpuFrames = 1;
     bool shadowMap = false;
     double speedMps = 0;  ///< the eye flies along its heading at this speed, one frame per 1/60 s
@@ -93,7 +94,8 @@ nlohmann::json qualityJson(const QualitySettings& q)
             {"detailFadeEndM", q.detailFadeEndM}, {"lightVolumeTexelM", q.lightVolumeTexelM},
             {"lightVolumeMinRays", q.lightVolumeMinRays}, {"detailMinTransmittance", q.detailMinTransmittance},
             {"deepStepFactor", q.deepStepFactor},
-            {"maxStepOpticalDepth", q.maxStepOpticalDepth}, {"emptySpaceSkipping", q.emptySpaceSkipping}};
+            {"maxStepOpticalDepth", q.maxStepOpticalDepth}, {"emptySpaceSkipping", q.emptySpaceSkipping},
+            {"lightVolumeFarCascade", q.lightVolumeFarCascade}};
 }
 
 // Box-filters an image down by an integer factor (contact sheet tiles only).
@@ -228,6 +230,8 @@ int runBench(const BenchOptions& o)
         quality.detail = false;
     if (o.noSkipping)
         quality.emptySpaceSkipping = false;
+    if (o.noFarLightVolume)
+        quality.lightVolumeFarCascade = false;
     if (o.fullConeSamples >= 0)
         quality.fullConeSamples = uint32_t(o.fullConeSamples);
     if (o.lightVolumeTexelM >= 0)
@@ -342,6 +346,7 @@ int main(int argc, char** argv)
         ->check(CLI::Range(0, 6));
     app.add_flag("--no-detail", o.noDetail, "Turn the detail erosion off");
     app.add_flag("--no-skipping", o.noSkipping, "Turn the march's empty-space skipping off (search every step)");
+    app.add_flag("--no-far-light-volume", o.noFarLightVolume, "No far cascade of the light volume");
     app.add_option("--full-cone-samples", o.fullConeSamples, "Cone samples that may take the detailed density")
         ->check(CLI::Range(0, 6));
     app.add_option("--light-volume-texel", o.lightVolumeTexelM,

@@ -85,7 +85,7 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
               DescriptorInfo(r.detailNoise, r.linearRepeat), DescriptorInfo(r.curlNoise, r.linearRepeat),
               DescriptorInfo(r.blueNoise, r.nearestRepeat), DescriptorInfo(r.transmittanceLut, r.linearClamp),
               DescriptorInfo(marchCloud), DescriptorInfo(marchDepth), DescriptorInfo(r.lightVolume, r.linearClamp),
-              DescriptorInfo(r.columnBoundsImage, r.nearestRepeat)});
+              DescriptorInfo(r.columnBoundsImage, r.nearestRepeat), DescriptorInfo(r.lightVolumeFar, r.linearClamp)});
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsClouds);
     // Reprojected: the packed history the reconstruct pass writes this frame (which the next frame

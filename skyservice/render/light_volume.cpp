@@ -18,12 +18,30 @@ SkyStatus createLightVolume(Renderer& r)
     d.format = VK_FORMAT_R16_SFLOAT;  // transmittance: half floats keep 11 bits down to 6e-5, less to 6e-8
     d.width = d.height = LIGHT_VOLUME_SIZE;
     d.depth = LIGHT_VOLUME_LEVELS;
-    return createImage(r.ctx, r.memory, r.lightVolume, d, "light volume");
+    SKY_TRY(createImage(r.ctx, r.memory, r.lightVolume, d, "light volume"));
+    return createImage(r.ctx, r.memory, r.lightVolumeFar, d, "light volume, far cascade");
 }
+
+namespace
+{
+
+// The placement of a volume of `texelM` texels around the eye: its corner snapped in double to a whole
+// number of texels on the window plane, so that frames (and display channels) with eyes in the same
+// texel build the same volume.
+vec4 volumePlacement(const FrameParams& frame, double texelM)
+{
+    const double half = 0.5 * double(LIGHT_VOLUME_SIZE);
+    const double cornerX = (std::floor(double(frame.windowOffsetM.x) / texelM) - half) * texelM;
+    const double cornerY = (std::floor(double(frame.windowOffsetM.y) / texelM) - half) * texelM;
+    return vec4(float(cornerX), float(cornerY), float(texelM), 0.0f);
+}
+
+}  // namespace
 
 void placeLightVolume(const QualitySettings& quality, FrameParams& frame)
 {
     frame.lightVolume = vec4(0.0f);
+    frame.lightVolumeFar = vec4(0.0f);
     const uint32_t samples = std::min(quality.lightSamples, 6u);
     const bool hasVolumetricCloud = frame.shell.y > frame.shell.x;
     const uint32_t block = std::max(frame.reprojection.x, 1u);
@@ -31,13 +49,9 @@ void placeLightVolume(const QualitySettings& quality, FrameParams& frame)
     if (quality.lightVolumeTexelM <= 0.0 || quality.fullConeSamples >= samples || !hasVolumetricCloud ||
         rays < quality.lightVolumeMinRays)
         return;
-    // Snapped in double: the corner is a whole number of texels on the window plane, so that frames
-    // (and display channels) with eyes in the same texel build the same volume.
-    const double texelM = quality.lightVolumeTexelM;
-    const double half = 0.5 * double(LIGHT_VOLUME_SIZE);
-    const double cornerX = (std::floor(double(frame.windowOffsetM.x) / texelM) - half) * texelM;
-    const double cornerY = (std::floor(double(frame.windowOffsetM.y) / texelM) - half) * texelM;
-    frame.lightVolume = vec4(float(cornerX), float(cornerY), float(texelM), 0.0f);
+    frame.lightVolume = volumePlacement(frame, quality.lightVolumeTexelM);
+    if (quality.lightVolumeFarCascade)
+        frame.lightVolumeFar = volumePlacement(frame, quality.lightVolumeTexelM * LIGHT_VOLUME_FAR_SCALE);
 }
 
 namespace
@@ -73,10 +87,12 @@ void recordLightVolume(Renderer& r, VkCommandBuffer cmd, const FrameParams& fram
         std::memcmp(&r.lightVolumeKey.inputs, &key.inputs, sizeof(FrameParams)) == 0)
         return;
     r.lightVolumeKey = key;
-    dispatch(r.ctx, cmd, r.lightVolumeProgram, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS, nullptr, 0,
-             {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.weatherWindowImage, r.linearClamp),
-              DescriptorInfo(r.baseNoise, r.linearRepeat), DescriptorInfo(r.detailNoise, r.linearRepeat),
-              DescriptorInfo(r.curlNoise, r.linearRepeat), DescriptorInfo(r.lightVolume)});
+    for (uint32_t cascade = 0; cascade < (frame.lightVolumeFar.z > 0.0f ? 2u : 1u); ++cascade)
+        dispatch(r.ctx, cmd, r.lightVolumeProgram, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS, cascade,
+                 {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.weatherWindowImage, r.linearClamp),
+                  DescriptorInfo(r.baseNoise, r.linearRepeat), DescriptorInfo(r.detailNoise, r.linearRepeat),
+                  DescriptorInfo(r.curlNoise, r.linearRepeat),
+                  DescriptorInfo(cascade == 0 ? r.lightVolume : r.lightVolumeFar)});
     computeBarrier(cmd);
 }
 

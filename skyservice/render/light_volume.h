@@ -24,12 +24,15 @@ struct LightVolumeKey
     bool valid = false;
 };
 
-/// Creates the volume image (LIGHT_VOLUME_SIZE^2 x LIGHT_VOLUME_LEVELS, R16F: 0.44 MB), layout UNDEFINED
-/// (the renderer's start-up command buffer makes it GENERAL with its other images).
+/// Creates the volume image and its far cascade's (each LIGHT_VOLUME_SIZE^2 x LIGHT_VOLUME_LEVELS, R16F:
+/// 0.44 MB), layout UNDEFINED (the renderer's start-up command buffer makes them GENERAL with its other
+/// images).
 SkyStatus createLightVolume(Renderer& r);
 
 /**
- * Fills frame.lightVolume: the volume's corner on the window plane, snapped to whole texels so that the
+ * Fills frame.lightVolume (and frame.lightVolumeFar, its cascade of LIGHT_VOLUME_FAR_SCALE times wider
+ * texels, unless quality.lightVolumeFarCascade is false): the volume's corner on the window plane, snapped
+ * to whole texels so that the
  * texels stay fixed to the ground while the eye moves in a window, and its texel size; z = 0 (no volume)
  * when the quality turns it off, when no cone sample is cheap (nothing to precompute) or when the frame
  * has no volumetric cloud, or marches fewer rays than quality.lightVolumeMinRays (frame.image.xy and the

@@ -32,6 +32,9 @@ struct QualitySettings
     /// 640x360 reprojected (14 400 rays) with the eye flying: +0..15 % per frame with the volume; on the
     /// H200 at 1920x1080 reprojected (130 000 rays): -6..-27 %.
     uint32_t lightVolumeMinRays = 50000;
+    /// With the light volume, also its far cascade of 2x wider texels (15.4 km around the eye): lit
+    /// samples beyond the volume read it instead of marching the whole cone (shaders/shared/light_volume.h).
+    bool lightVolumeFarCascade = true;
     /// View samples behind a view transmittance below this take the base shape without detail erosion
     /// (0: never): there little of the sample reaches the eye. H200, 1080p reprojected: -4..-7 % per frame
     /// in the volumetric scenes at 0.1 (-7..-10 % at 0.2); pictures 47-56 dB of those without it at 0.1

@@ -45,7 +45,8 @@ SkyStatus generateNoise(Renderer& r, uint32_t seed)
     SKY_TRY(beginOneShot(r.ctx, shot));
     vkCmdResetQueryPool(shot.cmd, r.timestamps, 0, kTsCount);
     vkCmdWriteTimestamp(shot.cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r.timestamps, 0);
-    for (Image* img : {&r.baseNoise, &r.detailNoise, &r.curlNoise, &r.linearStandIn, &r.historyStandIn, &r.lightVolume})
+    for (Image* img : {&r.baseNoise, &r.detailNoise, &r.curlNoise, &r.linearStandIn, &r.historyStandIn, &r.lightVolume,
+                        &r.lightVolumeFar})
         transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     NoisePush push = {seed, BASE_NOISE_SIZE, 0, 0};
     dispatch(r.ctx, shot.cmd, r.baseNoiseProgram, BASE_NOISE_SIZE, BASE_NOISE_SIZE, BASE_NOISE_SIZE, push,
@@ -193,7 +194,7 @@ void destroyRenderer(Renderer& r)
     }
     vkDeviceWaitIdle(r.ctx.device);  // shutdown only
     for (Image* img : {&r.baseNoise, &r.detailNoise, &r.curlNoise, &r.blueNoise, &r.transmittanceLut,
-                       &r.multiscatterLut, &r.skyViewLut, &r.aerialInscatterLut, &r.aerialTransmittanceLut, &r.weatherWindowImage, &r.columnBoundsImage, &r.lightVolume, &r.cloudImage, &r.depthImage,
+                       &r.multiscatterLut, &r.skyViewLut, &r.aerialInscatterLut, &r.aerialTransmittanceLut, &r.weatherWindowImage, &r.columnBoundsImage, &r.lightVolume, &r.lightVolumeFar, &r.cloudImage, &r.depthImage,
                        &r.linearImage, &r.displayImage, &r.freshCloudImage, &r.freshDepthImage, &r.history[0],
                        &r.history[1], &r.linearStandIn, &r.historyStandIn})
         destroyImage(r.ctx, r.memory, *img);

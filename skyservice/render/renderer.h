@@ -50,6 +50,7 @@ struct Renderer
     Image weatherWindowImage;
     Image columnBoundsImage;  ///< the window's column-bounds pyramid (shaders/shared/column_bounds.h)
     Image lightVolume;  ///< 3D, light_volume.h: the far part of the light cones around the eye
+    Image lightVolumeFar;  ///< its far cascade (LIGHT_VOLUME_FAR_SCALE times wider texels)
     LightVolumeKey lightVolumeKey;  ///< what lightVolume holds (valid = false: nothing yet)
     Image cloudImage, depthImage, displayImage;
     Image linearImage;  ///< only while frames ask for it (QualitySettings::linearOutput)
