@@ -17,10 +17,10 @@ vec3 keyLightAt(vec3 p, vec3 lightDir)
 
 // The light cone of one lit view sample: optical depth toward the light from 6 samples in a widening
 // cone, then one long sample at 3x the cone length (Schneider 2015); cheap density once the path is
-// already dense, and beyond the first frame.marchLod.w samples. Within 30 km of the eye those cheap far
+// already dense, and beyond the first frame.marchLod.w samples. Within 15.4 km of the eye those cheap far
 // samples come precomputed from the light volume or its far cascade (shaders/shared/light_volume.h): one
-// fetch instead of 5 density lookups. Beyond frame.marchLod.z metres (0: never) 3 cheap samples cover the same cone: there a pixel
-// spans tens of metres and the view samples are far apart. The march takes the cone's density lookups
+// fetch instead of 5 density lookups. Beyond frame.marchLod.z metres (0: never) 3 cheap samples cover the
+// same cone: there a pixel spans tens of metres and the view samples are far apart. The march takes the cone's density lookups
 // one per loop iteration (marchClouds says why), so the cone is a small state.
 struct LightCone
 {

@@ -52,9 +52,7 @@ bool noCloudBetween(vec3 dir, float t0, float t1)
     uvec2 b10 = texelFetch(columnBounds, ivec2(i1.x, i0.y), 0).xy;
     uvec2 b01 = texelFetch(columnBounds, ivec2(i0.x, i1.y), 0).xy;
     uvec2 b11 = texelFetch(columnBounds, i1, 0).xy;
-    uint baseUnits = min(min(b00.x, b10.x), min(b01.x, b11.x));
-    uint topUnits = max(max(b00.y, b10.y), max(b01.y, b11.y));
-    float baseM = baseUnits == 0u ? -1e9f : float(baseUnits) * COLUMN_BOUNDS_UNIT_M;
-    float topM = topUnits == 0u ? -1e9f : topUnits == 255u ? 1e9f : float(topUnits) * COLUMN_BOUNDS_UNIT_M;
+    float baseM = columnBoundsBaseM(min(min(b00.x, b10.x), min(b01.x, b11.x)));
+    float topM = columnBoundsTopM(max(max(b00.y, b10.y), max(b01.y, b11.y)));
     return hLow > topM || hHigh < baseM;
 }

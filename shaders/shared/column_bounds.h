@@ -21,8 +21,9 @@
 #include "shaders/shared/weather_window.h"
 
 #define COLUMN_BOUNDS_UNIT_M 64.0f  // 255 units: 16.3 km, the top of the troposphere's tallest cells
-#define COLUMN_BOUNDS_WIDTH (WEATHER_WINDOW_SIZE + WEATHER_WINDOW_SIZE / 2)
 #define COLUMN_BOUNDS_LEVELS 9      // log2(WEATHER_WINDOW_SIZE) + 1: the last level is one texel
+// What a decoded bound reads where the code says "no bound" (m, with the sign of the side it opens).
+#define COLUMN_BOUNDS_NONE_M 1e9f
 // Atlas texel of the origin of pyramid level `level` of a window `size` texels a side (level 0 at the
 // origin; the others stacked in a column to its right, level l at row size - 2 (size >> l)).
 #ifdef __cplusplus
@@ -33,6 +34,25 @@ ivec2 columnBoundsLevelOrigin(int level, int size)
     if (level == 0)
         return ivec2(0, 0);
     return ivec2(size, size - 2 * (size >> level));
+}
+
+// The lowest base (m) a base code stands for: -COLUMN_BOUNDS_NONE_M for 0 (no lower bound).
+#ifdef __cplusplus
+inline
+#endif
+float columnBoundsBaseM(uint code)
+{
+    return code == 0u ? -COLUMN_BOUNDS_NONE_M : float(code) * COLUMN_BOUNDS_UNIT_M;
+}
+
+// The highest top (m) a top code stands for: -COLUMN_BOUNDS_NONE_M for 0 (no cloud), +COLUMN_BOUNDS_NONE_M
+// for 255 (no upper bound).
+#ifdef __cplusplus
+inline
+#endif
+float columnBoundsTopM(uint code)
+{
+    return code == 0u ? -COLUMN_BOUNDS_NONE_M : code == 255u ? COLUMN_BOUNDS_NONE_M : float(code) * COLUMN_BOUNDS_UNIT_M;
 }
 
 #endif

@@ -107,10 +107,11 @@ ColumnBound columnBoundAt(const std::vector<uint8_t>& atlas, uint32_t size, int 
 {
     const ivec2 o = columnBoundsLevelOrigin(level, int(size));
     const size_t at = (size_t(uint32_t(o.y) + j) * columnBoundsWidth(size) + uint32_t(o.x) + i) * 2;
-    const uint8_t b = atlas[at], t = atlas[at + 1];
-    const float inf = std::numeric_limits<float>::infinity();
-    return {b == 0 ? -inf : float(b) * COLUMN_BOUNDS_UNIT_M,
-            t == 0 ? -inf : t == 255 ? inf : float(t) * COLUMN_BOUNDS_UNIT_M};
+    // The shaders' decoding, with "no bound" as an infinity.
+    auto unbounded = [](float m) {
+        return std::abs(m) >= COLUMN_BOUNDS_NONE_M ? std::copysign(std::numeric_limits<float>::infinity(), m) : m;
+    };
+    return {unbounded(columnBoundsBaseM(atlas[at])), unbounded(columnBoundsTopM(atlas[at + 1]))};
 }
 
 }  // namespace sky
