@@ -156,8 +156,10 @@ const int MARCH_CONE = 3;     // the light cone of a lit view sample
 // search, full view sample, surface bisection, light cone). The 32 rays of a GPU subgroup are in
 // different parts at once; written as nested loops, the subgroup ran each part's lookups one after the
 // other (a lane in the light cone made the others wait 2-7 lookups), here they share one.
+// `lookups` counts the loop's iterations (density lookups and skip checks): what the ray cost
+// (shaders/shared/march_order.h).
 void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout float transmittance,
-                 inout float depthWeighted, inout float depthWeight)
+                 inout float depthWeighted, inout float depthWeight, inout uint lookups)
 {
     vec3 lightDir = keyLightDirection();
     float cosTheta = dot(dir, lightDir);
@@ -212,6 +214,7 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
         bool viewSample = state == MARCH_SEARCH || state == MARCH_FULL;
         if (viewSample && (viewSamples >= 2u * frame.march.x || fullSamples >= frame.march.x || t >= tExit))
             break;
+        ++lookups;
         if (viewSample)
             dt = max(baseStep, t * growth);
         if (state == MARCH_SEARCH && skipping && outsideLayers && t >= recheckT)

@@ -11,6 +11,7 @@
 #include "shaders/shared/atmosphere_params.h"
 #include "shaders/shared/light_volume.h"
 #include "shaders/shared/column_bounds.h"
+#include "shaders/shared/march_order.h"
 #include "shaders/lib/shell.glsl"
 #include "shaders/lib/cloud_shape.glsl"
 #include "shaders/lib/phase.glsl"
@@ -37,6 +38,15 @@ layout(binding = 10) uniform sampler3D lightVolume;
 layout(binding = 11) uniform usampler2D columnBounds;
 // The light volume's far cascade (640 m texels; frame.lightVolumeFar.z 0: none this frame).
 layout(binding = 12) uniform sampler3D lightVolumeFar;
+// Which image row of workgroups this dispatch row marches, and the lookups each row took (march_order.h).
+layout(binding = 13, std430) buffer MarchOrderBlock
+{
+    uint rowOrder[MARCH_ORDER_MAX_ROWS];
+    uint rowLookups[MARCH_ORDER_MAX_ROWS];
+} marchOrder;
+
+// The largest density-lookup count of this workgroup's rays.
+shared uint groupLookups;
 
 #include "shaders/lib/atmosphere_sampling.glsl"
 #include "shaders/clouds/cloud_density.glsl"
@@ -46,18 +56,9 @@ layout(binding = 12) uniform sampler3D lightVolumeFar;
 #include "shaders/clouds/high_cloud.glsl"
 #include "shaders/clouds/view_ray.glsl"
 
-void main()
+// Marches the ray of `pixel` and stores it at `texel`; returns its density lookups.
+uint marchPixel(ivec2 pixel, ivec2 texel)
 {
-    // Reprojected frames (frame.reprojection.x = B: 4, or 2 or 1 near clouds) march one pixel of each
-    // BxB block and store it at the block's texel of a block-resolution image; full-resolution frames
-    // march every pixel.
-    uint block = max(frame.reprojection.x, 1u);
-    uvec2 id = permutedId(gl_GlobalInvocationID.xy, (frame.image.y + block - 1u) / block);
-    ivec2 pixel = ivec2(id * block + uvec2(frame.reprojection.y, frame.reprojection.z));
-    if (pixel.x >= int(frame.image.x) || pixel.y >= int(frame.image.y))
-        return;
-    ivec2 texel = ivec2(id);
-
     vec3 dir = viewRayDirection(vec2(pixel) + 0.5f);
     float R = frame.earth.x;
     float hc = frame.cameraForward.w;
@@ -67,6 +68,7 @@ void main()
     float transmittance = 1.0f;
     float depthWeighted = 0.0f;
     float depthWeight = 0.0f;
+    uint lookups = 0u;
 
     float tEnter;
     float tExit;
@@ -82,7 +84,7 @@ void main()
     }
 
     if (hit)
-        marchClouds(dir, tEnter, tExit, radiance, transmittance, depthWeighted, depthWeight);
+        marchClouds(dir, tEnter, tExit, radiance, transmittance, depthWeighted, depthWeight, lookups);
 
     if (!highInFront && high.alpha > 0.0f)
     {
@@ -95,4 +97,26 @@ void main()
     float depth = depthWeight > 1e-4f ? depthWeighted / depthWeight : 0.0f;
     imageStore(cloudOut, texel, vec4(radiance, 1.0f - transmittance));
     imageStore(depthOut, texel, vec4(depth, 0.0f, 0.0f, 0.0f));
+    return lookups;
+}
+
+void main()
+{
+    if (gl_LocalInvocationIndex == 0u)
+        groupLookups = 0u;
+    barrier();
+    // Reprojected frames (frame.reprojection.x = B: 4, or 2 or 1 near clouds) march one pixel of each
+    // BxB block and store it at the block's texel of a block-resolution image; full-resolution frames
+    // march every pixel. The dispatch's workgroup rows run in the order the host chose (march_order.h).
+    uint block = max(frame.reprojection.x, 1u);
+    uint rows = (frame.image.y + block - 1u) / block;
+    uint groupRows = (rows + gl_WorkGroupSize.y - 1u) / gl_WorkGroupSize.y;
+    uint groupRow = min(marchOrder.rowOrder[min(gl_WorkGroupID.y, MARCH_ORDER_MAX_ROWS - 1u)], groupRows - 1u);
+    uvec2 id = uvec2(gl_GlobalInvocationID.x, groupRow * gl_WorkGroupSize.y + gl_LocalInvocationID.y);
+    ivec2 pixel = ivec2(id * block + uvec2(frame.reprojection.y, frame.reprojection.z));
+    if (pixel.x < int(frame.image.x) && pixel.y < int(frame.image.y))
+        atomicMax(groupLookups, marchPixel(pixel, ivec2(id)));
+    barrier();
+    if (gl_LocalInvocationIndex == 0u)
+        atomicAdd(marchOrder.rowLookups[groupRow], groupLookups);
 }

@@ -65,6 +65,7 @@ struct BenchOptions
     double detailFadeStartM = -1, detailFadeEndM = -1;
     bool noDetail = false;
     bool noSkipping = false;
+    bool noCostOrder = false;
     bool noFarLightVolume = false;
     uint32_t gpuFrames = 1;
     bool shadowMap = false;
@@ -228,6 +229,8 @@ int runBench(const BenchOptions& o)
         quality.lightSamples = uint32_t(o.lightSamples);
     if (o.noDetail)
         quality.detail = false;
+    if (o.noCostOrder)
+        quality.costOrderedMarch = false;
     if (o.noSkipping)
         quality.emptySpaceSkipping = false;
     if (o.noFarLightVolume)
@@ -346,6 +349,8 @@ int main(int argc, char** argv)
         ->check(CLI::Range(0, 6));
     app.add_flag("--no-detail", o.noDetail, "Turn the detail erosion off");
     app.add_flag("--no-skipping", o.noSkipping, "Turn the march's empty-space skipping off (search every step)");
+    app.add_flag("--no-cost-order", o.noCostOrder,
+                 "Launch the march's workgroup rows in the interleaved order, not costliest first");
     app.add_flag("--no-far-light-volume", o.noFarLightVolume, "No far cascade of the light volume");
     app.add_option("--full-cone-samples", o.fullConeSamples, "Cone samples that may take the detailed density")
         ->check(CLI::Range(0, 6));

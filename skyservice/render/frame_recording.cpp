@@ -3,6 +3,7 @@
 
 #include "skyservice/render/atmosphere_passes.h"
 #include "skyservice/render/light_volume.h"
+#include "skyservice/render/march_order.h"
 
 #include <cstring>
 #include <glm/gtc/packing.hpp>
@@ -67,16 +68,21 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
     SKY_TRY(beginOneShot(r.ctx, shot));
     VkCommandBuffer cmd = shot.cmd;
     vkCmdResetQueryPool(cmd, r.timestamps, 0, kTsCount);
+    // Reprojected: one invocation per block (4x4, or finer near clouds) into the fresh images.
+    const uint32_t block = reprojected ? r.reprojection.block.blockPx : 1u;
+    const uint32_t marchX = (request.width + block - 1) / block;
+    const uint32_t marchY = (request.height + block - 1) / block;
+    // The order of the march's workgroup rows (march_order.h), uploaded first: its barrier then waits
+    // for nothing.
+    const uint32_t marchGroupRows = (marchY + WORKGROUP_SIZE_2D - 1) / WORKGROUP_SIZE_2D;
+    result.marchRowOrder = prepareMarchOrder(r.marchOrder, cmd, marchGroupRows, r.marchDispatchRanges,
+                                             in.quality->costOrderedMarch);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r.timestamps, kTsStart);
     recordAtmosphere(r, cmd, camera, sunMoon, in);
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsSkyView);
     recordLightVolume(r, cmd, params);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsLightVolume);
-    // Reprojected: one invocation per block (4x4, or finer near clouds) into the fresh images.
-    const uint32_t block = reprojected ? r.reprojection.block.blockPx : 1u;
-    uint32_t marchX = (request.width + block - 1) / block;
-    uint32_t marchY = (request.height + block - 1) / block;
     const Image& marchCloud = reprojected ? r.freshCloudImage : r.cloudImage;
     const Image& marchDepth = reprojected ? r.freshDepthImage : r.depthImage;
     dispatch(r.ctx, cmd, r.cloudProgram, marchX, marchY, 1, nullptr, 0,
@@ -85,7 +91,8 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
               DescriptorInfo(r.detailNoise, r.linearRepeat), DescriptorInfo(r.curlNoise, r.linearRepeat),
               DescriptorInfo(r.blueNoise, r.nearestRepeat), DescriptorInfo(r.transmittanceLut, r.linearClamp),
               DescriptorInfo(marchCloud), DescriptorInfo(marchDepth), DescriptorInfo(r.lightVolume, r.linearClamp),
-              DescriptorInfo(r.columnBoundsImage, r.nearestRepeat), DescriptorInfo(r.lightVolumeFar, r.linearClamp)});
+              DescriptorInfo(r.columnBoundsImage, r.nearestRepeat), DescriptorInfo(r.lightVolumeFar, r.linearClamp),
+              DescriptorInfo(r.marchOrder.buffer)});
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsClouds);
     // Reprojected: the packed history the reconstruct pass writes this frame (which the next frame
@@ -108,7 +115,9 @@ SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame&
                     in.quality->linearOutput ? r.linearImage : r.linearStandIn);
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsComposite);
+    recordMarchLookupsReadback(r.marchOrder, cmd);
     SKY_TRY(endOneShot(r.ctx, shot));
+    result.marchRowLookups = collectMarchLookups(r.marchOrder, marchGroupRows);
 
     uint64_t ts[kTsCount] = {};
     if (r.ctx.timestampPeriodNs > 0 &&

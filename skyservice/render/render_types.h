@@ -86,6 +86,10 @@ struct QualitySettings
     /// overcast deck (tests/gpu/test_flight_path.cpp) block 2 keeps the display image 50+ dB of the
     /// full render. H200, 1080p: inside-cloud 0.748 -> 0.277 ms (BENCHMARKS.md, sixth session).
     uint32_t insideCloudBlockPx = 2;
+    /// The march launches its workgroup rows costliest first, by the lookups the previous frame of the
+    /// same shape counted (shaders/shared/march_order.h); false: always the interleaved order (A/B). It
+    /// changes no pixel. H200, 1080p: see BENCHMARKS.md, seventh session.
+    bool costOrderedMarch = true;
     bool highCloud = true;               ///< cirrus layer on
     uint32_t accumulationFrames = 1;     ///< frames averaged, each with new march jitter and sub-pixel offset
     uint32_t shadowSteps = 48;           ///< density samples per shadow-map texel along the light ray
@@ -138,6 +142,11 @@ struct RenderResult
     /// inside a cloud layer, skyservice/render/reprojection.h), and why it was not 4 ("" when it was).
     /// Full-resolution frames: 1 and "".
     uint32_t marchBlockPx = 1;
+    /// The march's workgroup rows (WORKGROUP_SIZE_2D rows of marched pixels each, top first): the order
+    /// they were launched in (index: launch position, value: row), and per row the sum over its workgroups
+    /// of their rays' largest density-lookup count (shaders/shared/march_order.h).
+    std::vector<uint32_t> marchRowOrder;
+    std::vector<uint32_t> marchRowLookups;
     std::string marchBlockReason;
     /// Cloud shadow map (when ViewRequest::shadowMap): shadowMapSize^2 texels, row-major, north row first,
     /// west column first (skyservice/render/shadow_map.h); gpuMs["shadowMap"] holds its GPU time.

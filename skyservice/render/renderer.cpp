@@ -181,6 +181,8 @@ SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
                          MemoryUse::HostVisible, "frame uniforms"));
     SKY_TRY(createAtmosphereResources(r));
     SKY_TRY(createLightVolume(r));
+    SKY_TRY(createMarchOrder(r.ctx, r.memory, r.marchOrder));
+    r.marchDispatchRanges = dispatchRanges(r.ctx);
     SKY_TRY(generateNoise(r, options.noiseSeed));
     return SkyStatus::success();
 }
@@ -200,6 +202,7 @@ void destroyRenderer(Renderer& r)
         destroyImage(r.ctx, r.memory, *img);
     destroyShadowMapPass(r.ctx, r.memory, r.shadowPass);
     destroyBuffer(r.ctx, r.memory, r.frameUniforms);
+    destroyMarchOrder(r.ctx, r.memory, r.marchOrder);
     destroyBuffer(r.ctx, r.memory, r.atmosphereUniforms);
     for (Program* p : {&r.baseNoiseProgram, &r.detailNoiseProgram, &r.curlNoiseProgram, &r.transmittanceProgram,
                        &r.multiscatterProgram, &r.skyViewProgram, &r.aerialPerspectiveProgram, &r.cloudProgram, &r.compositeProgram,
@@ -331,6 +334,8 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
         }
         for (const auto& [pass, ms] : one.gpuMs)
             result.gpuMs[pass] += ms / frames;
+        result.marchRowOrder = std::move(one.marchRowOrder);  // the last frame's
+        result.marchRowLookups = std::move(one.marchRowLookups);
         accumulate(one.cloudRgbaHalf, cloudSum);
         accumulate(one.linearRgbaHalf, linearSum);
         displaySum.resize(one.displayRgba8.size());

@@ -15,6 +15,7 @@
 #include "skyservice/earth/weather_window.h"
 #include "skyservice/render/render_types.h"
 #include "skyservice/render/light_volume.h"
+#include "skyservice/render/march_order.h"
 #include "skyservice/render/reprojection.h"
 #include "skyservice/render/shadow_map.h"
 #include "skyservice/render/weather_stage.h"
@@ -52,6 +53,8 @@ struct Renderer
     Image lightVolume;  ///< 3D, light_volume.h: the far part of the light cones around the eye
     Image lightVolumeFar;  ///< its far cascade (LIGHT_VOLUME_FAR_SCALE times wider texels)
     LightVolumeKey lightVolumeKey;  ///< what lightVolume holds (valid = false: nothing yet)
+    MarchOrder marchOrder;  ///< the march's workgroup-row order and the lookups of the last march (march_order.h)
+    uint32_t marchDispatchRanges = 1;  ///< contiguous ranges the device runs a dispatch in (dispatchRanges)
     Image cloudImage, depthImage, displayImage;
     Image linearImage;  ///< only while frames ask for it (QualitySettings::linearOutput)
     // Reprojection (created on the first reprojected frame): the marched pixels at block resolution
