@@ -41,6 +41,7 @@ std::map<std::string, Key> keys()
         {"march.deep_step_factor", real(&QualitySettings::deepStepFactor, 1, 8)},
         {"march.empty_space_skipping", flag(&QualitySettings::emptySpaceSkipping)},
         {"march.inside_cloud_block_px", u32(&QualitySettings::insideCloudBlockPx, 1, 2)},
+        {"march.cost_ordered_rows", flag(&QualitySettings::costOrderedMarch)},
         {"lighting.octaves", u32(&QualitySettings::octaves, 1, 8)},
         {"lighting.octave_attenuation", real(&QualitySettings::octaveAttenuation, 0, 1)},
         {"lighting.octave_contribution", real(&QualitySettings::octaveContribution, 0, 1)},

@@ -34,11 +34,14 @@ SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const Qual
     }
     if (!r.windowOnGpu)  // stays false if the upload fails: the next frame uploads again
     {
+        // Both images in one submit: a window made on the frame path (first frame, a jump, a prefetch that
+        // missed) waits for the GPU once.
         const std::vector<uint16_t>& texels = r.window->gpuTexelsHalf;
-        SKY_TRY(uploadImage(r.ctx, r.memory, r.weatherWindowImage, texels.data(), texels.size() * sizeof(uint16_t),
-                            VK_IMAGE_LAYOUT_GENERAL));
         const std::vector<uint8_t>& bounds = r.window->columnBounds;
-        SKY_TRY(uploadImage(r.ctx, r.memory, r.columnBoundsImage, bounds.data(), bounds.size(), VK_IMAGE_LAYOUT_GENERAL));
+        SKY_TRY(uploadImages(r.ctx, r.memory,
+                             {ImageUpload{&r.weatherWindowImage, texels.data(), texels.size() * sizeof(uint16_t),
+                                          VK_IMAGE_LAYOUT_GENERAL},
+                              ImageUpload{&r.columnBoundsImage, bounds.data(), bounds.size(), VK_IMAGE_LAYOUT_GENERAL}}));
         r.windowOnGpu = true;
     }
     // The next node: the first one along the eye's horizontal motion, prefetched once it is within the

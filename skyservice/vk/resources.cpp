@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/vk/resources.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace sky
@@ -253,20 +254,43 @@ SkyStatus endOneShot(const Context& ctx, OneShot& shot)
 SkyStatus uploadImage(const Context& ctx, MemoryTracker& tracker, Image& image, const void* data, size_t bytes,
                       VkImageLayout finalLayout)
 {
+    return uploadImages(ctx, tracker, {ImageUpload{&image, data, bytes, finalLayout}});
+}
+
+SkyStatus uploadImages(const Context& ctx, MemoryTracker& tracker, std::initializer_list<ImageUpload> uploads)
+{
+    // Each image's bytes start at a multiple of 16 (vkCmdCopyBufferToImage wants the texel size and 4).
+    auto aligned = [](size_t n) { return (n + 15) & ~size_t(15); };
+    size_t total = 0;
+    for (const ImageUpload& u : uploads)
+        total += aligned(u.bytes);
     Buffer staging;
-    SKY_TRY(createBuffer(ctx, tracker, staging, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostVisible,
-                         "staging upload"));
-    std::memcpy(staging.mapped, data, bytes);
+    SKY_TRY(createBuffer(ctx, tracker, staging, std::max<size_t>(total, 16), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                         MemoryUse::HostVisible, "staging upload"));
+    size_t offset = 0;
+    for (const ImageUpload& u : uploads)
+    {
+        std::memcpy(static_cast<uint8_t*>(staging.mapped) + offset, u.data, u.bytes);
+        offset += aligned(u.bytes);
+    }
     OneShot shot;
     SkyStatus s = beginOneShot(ctx, shot);
     if (s.ok())
     {
-        transitionImage(shot.cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-        VkBufferImageCopy region = {};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, image.layers};
-        region.imageExtent = image.extent;
-        vkCmdCopyBufferToImage(shot.cmd, staging.buffer, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-        transitionImage(shot.cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, finalLayout);
+        offset = 0;
+        for (const ImageUpload& u : uploads)
+        {
+            Image& image = *u.image;
+            transitionImage(shot.cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+            VkBufferImageCopy region = {};
+            region.bufferOffset = offset;
+            region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, image.layers};
+            region.imageExtent = image.extent;
+            vkCmdCopyBufferToImage(shot.cmd, staging.buffer, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                                   &region);
+            transitionImage(shot.cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, u.finalLayout);
+            offset += aligned(u.bytes);
+        }
         s = endOneShot(ctx, shot);
     }
     destroyBuffer(ctx, tracker, staging);

@@ -6,6 +6,7 @@
 
 #include "skyservice/vk/context.h"
 
+#include <initializer_list>
 #include <map>
 #include <mutex>
 #include <string>
@@ -91,6 +92,18 @@ SkyStatus endOneShot(const Context& ctx, OneShot& shot);  ///< submits, waits, f
 /// image in `finalLayout`.
 SkyStatus uploadImage(const Context& ctx, MemoryTracker& tracker, Image& image, const void* data, size_t bytes,
                       VkImageLayout finalLayout);
+
+/// One image of uploadImages: its whole contents (every layer) from `data`.
+struct ImageUpload
+{
+    Image* image = nullptr;
+    const void* data = nullptr;
+    size_t bytes = 0;
+    VkImageLayout finalLayout = VK_IMAGE_LAYOUT_GENERAL;
+};
+/// Uploads several images through one staging buffer and one submit (one wait on the frame path, not one
+/// per image).
+SkyStatus uploadImages(const Context& ctx, MemoryTracker& tracker, std::initializer_list<ImageUpload> uploads);
 /// Copies a whole image (layer 0) back to the host. The image must be in GENERAL layout.
 SkyStatus readbackImage(const Context& ctx, MemoryTracker& tracker, const Image& image, std::vector<uint8_t>& out);
 
