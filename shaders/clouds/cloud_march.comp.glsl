@@ -36,7 +36,7 @@ layout(binding = 9, r32f) uniform writeonly image2D depthOut;
 layout(binding = 10) uniform sampler3D lightVolume;
 // The weather window's column-bounds pyramid (column_bounds.h): empty-space skipping in the search.
 layout(binding = 11) uniform usampler2D columnBounds;
-// The light volume's far cascade (640 m texels; frame.lightVolumeFar.z 0: none this frame).
+// The light volume's far cascade (320 m texels; frame.lightVolumeFar.z 0: none this frame).
 layout(binding = 12) uniform sampler3D lightVolumeFar;
 // Which image row of workgroups this dispatch row marches, and the lookups each row took (march_order.h).
 layout(binding = 13, std430) buffer MarchOrderBlock

@@ -3,8 +3,8 @@
 //
 // Why: in a reprojected frame the GPU holds most of the march's workgroups at once, and the frame ends
 // when the last of them does. The costly rays (the horizon band, a Cb tower, a deck seen edge-on) take
-// 5-10x the lookups of the median ray (BENCHMARKS.md, seventh session); launched last, their chains
-// add to the frame instead of overlapping the cheap rows. So each frame the march counts the density
+// 5-7x the lookups of the median ray (BENCHMARKS.md, seventh session); launched last, they ran after
+// the cheap rows instead of alongside them. So each frame the march counts the density
 // lookups of every workgroup row, and the next frame launches the rows costliest first
 // (skyservice/render/march_order.h). On lavapipe, which hands each thread a contiguous range of
 // workgroups, the rows are dealt so that every thread's range costs about the same.
@@ -16,7 +16,8 @@
 #define SKY_SHARED_MARCH_ORDER_H
 #include "shaders/shared/bindings.h"
 
-// Workgroup rows at most: 8192 pixels (sky-bench's and the service's largest image) / 8 at block 1.
+// Workgroup rows at most: 8192 pixels (the largest image a request may ask for, renderer.cpp) / 8 at
+// block 1.
 #define MARCH_ORDER_MAX_ROWS 1024u
 
 // The storage buffer's layout (std430, uint32 each): rowOrder[MARCH_ORDER_MAX_ROWS], the image row of
