@@ -16,6 +16,10 @@ set_tests_properties(bench.reprojected_small_validated PROPERTIES TIMEOUT 120)
 add_test(NAME bench.reprojected_json COMMAND ${CMAKE_COMMAND} -E cat ${SKY_BENCH_TMP}/reprojected.json)
 set_tests_properties(bench.reprojected_json PROPERTIES DEPENDS bench.reprojected_small_validated
                      PASS_REGULAR_EXPRESSION "\"eyeSpeedMps\": 250(\\.0)?,.*\"mode\": \"reprojected\".*\"march\".*\"reconstruct\"")
+# Each scene reports the march's lookups per workgroup row (RenderResult::marchRowLookups).
+add_test(NAME bench.reprojected_json_row_lookups COMMAND ${CMAKE_COMMAND} -E cat ${SKY_BENCH_TMP}/reprojected.json)
+set_tests_properties(bench.reprojected_json_row_lookups PROPERTIES DEPENDS bench.reprojected_small_validated
+                     PASS_REGULAR_EXPRESSION "\"marchRowLookups\": \\[\n? *[0-9]+")
 # An unknown scene is a usage error that lists the known ones.
 add_test(NAME bench.unknown_scene COMMAND ${SKY_BENCH_EXPECT} 2 "unknown scene \"fog\".*above-deck-FL350"
          ${SKY_BENCH_BIN} --scene fog)

@@ -174,6 +174,7 @@ SkyStatus runScene(Renderer& r, const BenchOptions& o, const BenchScene& scene, 
     out.sunElevationDeg = result.sunElevationDeg;
     out.marchBlockPx = result.marchBlockPx;
     out.marchBlockReason = result.marchBlockReason;
+    out.marchRowLookups = result.marchRowLookups;
     checkPicture(result, out);
     if (!o.sheet.empty())
         tiles.push_back(shrink(result.displayRgba8, result.width, result.height));

@@ -110,6 +110,7 @@ nlohmann::json benchToJson(const BenchRun& run)
                           {"allFinite", s.allFinite},
                           {"marchBlockPx", s.marchBlockPx},
                           {"marchBlockReason", s.marchBlockReason},
+                          {"marchRowLookups", s.marchRowLookups},
                           {"gpuMs", passes},
                           {"wallMs", summaryJson(summarizeSamples(s.wallMs))},
                           {"cpuSetupMs", summaryJson(summarizeSamples(s.cpuSetupMs))}});
