@@ -20,6 +20,7 @@
 // horizon, sky above).
 #include "tests/gpu/flight_path.h"
 #include "tests/gpu/gpu_fixture.h"
+#include "tests/gpu/image_compare.h"
 #include "tests/gpu/scenes.h"
 
 #include <glm/gtc/packing.hpp>
@@ -69,52 +70,23 @@ double columnDifference(const RenderResult& a, uint32_t xa, const RenderResult& 
     return sum / (4.0 * a.height) / std::max(peak(a), peak(b));
 }
 
-// The ray of pixel centre (x + 0.5, y + 0.5) of `v` (shaders/clouds/view_ray.glsl, no sub-pixel offset).
-glm::dvec3 pixelRay(const ViewRequest& v, double x, double y)
+// Channel `a`'s cloud image in column x against `resampled` (another view's, resampleCloud'ed onto a's
+// pixels: bilinear at a's rays): the mean absolute difference over the rows whose ray falls inside the
+// other view (rgb and alpha, over `peakValue`).
+double sameRayDifference(const RenderResult& a, uint32_t x, const Resampled& resampled, double peakValue)
 {
-    const CameraFrame cam = computeCameraFrame(v.pose);
-    const double tanY = std::tan(v.fovYDeg * M_PI / 360.0), tanX = tanY * v.width / v.height;
-    const double nx = (x + 0.5) / v.width * 2.0 - 1.0, ny = (y + 0.5) / v.height * 2.0 - 1.0;
-    return glm::normalize(cam.forwardEnu + nx * tanX * cam.rightEnu - ny * tanY * cam.upEnu);
-}
-
-// Where ray `d` falls in `v`'s image (pixel coordinates of the kind pixelRay takes).
-glm::dvec2 rayPixel(const ViewRequest& v, const glm::dvec3& d)
-{
-    const CameraFrame cam = computeCameraFrame(v.pose);
-    const double tanY = std::tan(v.fovYDeg * M_PI / 360.0), tanX = tanY * v.width / v.height;
-    const double f = glm::dot(d, cam.forwardEnu);
-    const double nx = glm::dot(d, cam.rightEnu) / f / tanX, ny = -glm::dot(d, cam.upEnu) / f / tanY;
-    return {(nx + 1.0) * 0.5 * v.width - 0.5, (ny + 1.0) * 0.5 * v.height - 0.5};
-}
-
-// Channel `a`'s cloud image at pixel (x, y), and `b`'s bilinearly sampled at the same ray: the mean
-// absolute difference over the rows of column x (rgb and alpha, over the peak), rows whose ray falls
-// inside b's image.
-double sameRayDifference(const RenderResult& a, const ViewRequest& va, uint32_t x, const RenderResult& b,
-                         const ViewRequest& vb)
-{
-    auto at = [&](uint32_t px, uint32_t py, size_t c) {
-        return double(glm::unpackHalf1x16(b.cloudRgbaHalf[(size_t(py) * b.width + px) * 4 + c]));
-    };
     double sum = 0.0;
     int samples = 0;
     for (uint32_t y = 0; y < a.height; ++y)
     {
-        const glm::dvec2 p = rayPixel(vb, pixelRay(va, x, y));
-        if (p.x < 0.0 || p.y < 0.0 || p.x > b.width - 1.0 || p.y > b.height - 1.0)
+        const size_t p = size_t(y) * a.width + x;
+        if (!resampled.valid[p])
             continue;
-        const uint32_t x0 = std::min(uint32_t(p.x), b.width - 2), y0 = std::min(uint32_t(p.y), b.height - 2);
-        const double fx = p.x - x0, fy = p.y - y0;
         for (size_t c = 0; c < 4; ++c)
-        {
-            const double sampled = (1 - fy) * ((1 - fx) * at(x0, y0, c) + fx * at(x0 + 1, y0, c)) +
-                                   fy * ((1 - fx) * at(x0, y0 + 1, c) + fx * at(x0 + 1, y0 + 1, c));
-            sum += std::fabs(double(glm::unpackHalf1x16(a.cloudRgbaHalf[(size_t(y) * a.width + x) * 4 + c])) - sampled);
-        }
+            sum += std::fabs(double(glm::unpackHalf1x16(a.cloudRgbaHalf[p * 4 + c])) - double(resampled.cloudRgba[p * 4 + c]));
         ++samples;
     }
-    return samples == 0 ? 1.0 : sum / (4.0 * samples) / std::max(peak(a), peak(b));
+    return samples == 0 ? 1.0 : sum / (4.0 * samples) / peakValue;
 }
 
 class Channels : public GpuFixture
@@ -220,10 +192,11 @@ TEST_F(Channels, AChannelsEdgeMatchesACentredViewAtTheSameRays)
     RenderResult fa = renderOk(va, testQuality()), fc = renderOk(vc, testQuality());
     RenderResult ff = renderOk(fine, testQuality());
     const uint32_t w = va.width;
+    const Resampled fineAtChannelRays = resampleCloud(ff, fine, va);
     double sameRays = 0.0, columnForColumn = 0.0, inner = 0.0;
     for (uint32_t k = 0; k < 4; ++k)
     {
-        sameRays += sameRayDifference(fa, va, w - 1 - k, ff, fine) / 4.0;
+        sameRays += sameRayDifference(fa, w - 1 - k, fineAtChannelRays, std::max(peak(fa), peak(ff))) / 4.0;
         columnForColumn += columnDifference(fa, w - 1 - k, fc, w / 2 - 1 - k) / 4.0;
     }
     for (uint32_t x = w / 2 - 4; x < w / 2 + 4; ++x)

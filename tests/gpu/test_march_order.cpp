@@ -22,6 +22,16 @@ namespace
 
 class MarchOrderGpu : public GpuFixture
 {
+protected:
+    // The built-in weather's cumulonimbus at 320x180: cloudy rows and clear ones.
+    static ViewRequest cumulonimbus320()
+    {
+        setWeather(*renderer, makeBuiltinWeather(0));
+        ViewRequest v = cumulonimbusView("2026-06-21T15:00:00Z");
+        v.width = 320;
+        v.height = 180;
+        return v;
+    }
 };
 
 // Whether any pixel of image rows [y0, y1) has a cloud alpha above 0.5.
@@ -40,10 +50,7 @@ bool rowsHoldCloud(const RenderResult& r, uint32_t y0, uint32_t y1)
 // what the first frame counted: the same bytes, the same counts, and the costly rows are the cloudy ones.
 TEST_F(MarchOrderGpu, CostliestFirstChangesNoPixelAndFollowsTheLastCount)
 {
-    setWeather(*renderer, makeBuiltinWeather(0));
-    ViewRequest v = cumulonimbusView("2026-06-21T15:00:00Z");
-    v.width = 320;
-    v.height = 180;
+    const ViewRequest v = cumulonimbus320();
     QualitySettings interleaved = testQuality();
     interleaved.costOrderedMarch = false;
     QualitySettings costly = testQuality();
@@ -82,10 +89,7 @@ TEST_F(MarchOrderGpu, CostliestFirstChangesNoPixelAndFollowsTheLastCount)
 // starts again from the interleaved order, and a reprojected frame after that follows its own count.
 TEST_F(MarchOrderGpu, ReprojectedFramesOrderTheirOwnRows)
 {
-    setWeather(*renderer, makeBuiltinWeather(0));
-    ViewRequest v = cumulonimbusView("2026-06-21T15:00:00Z");
-    v.width = 320;
-    v.height = 180;
+    const ViewRequest v = cumulonimbus320();
     QualitySettings full = testQuality();
     QualitySettings reprojected = reprojectedQuality();
     RenderResult first = renderOk(v, reprojected);
