@@ -18,6 +18,6 @@ add_executable(test_aerial_lut gpu/test_aerial_lut.cpp gpu/scenes.cpp)
 target_link_libraries(test_aerial_lut PRIVATE sky_renderer GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_aerial_lut TEST_PREFIX "gpu." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
 
-add_executable(test_light_volume gpu/test_light_volume.cpp gpu/scenes.cpp gpu/image_compare.cpp)
+add_executable(test_light_volume gpu/test_light_volume.cpp gpu/test_cone_tail.cpp gpu/scenes.cpp gpu/image_compare.cpp)
 target_link_libraries(test_light_volume PRIVATE sky_renderer GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_light_volume TEST_PREFIX "gpu." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)

@@ -20,7 +20,10 @@ vec3 keyLightAt(vec3 p, vec3 lightDir)
 // already dense, and beyond the first frame.marchLod.w samples. Within 15.4 km of the eye those cheap far
 // samples come precomputed from the light volume or its far cascade (shaders/shared/light_volume.h): one
 // fetch instead of 5 density lookups. Beyond frame.marchLod.z metres (0: never) 3 cheap samples cover the
-// same cone: there a pixel spans tens of metres and the view samples are far apart. The march takes the cone's density lookups
+// same cone: there a pixel spans tens of metres and the view samples are far apart. Beyond the light
+// volume, a lit sample within frame.lightVolume.w metres of the last one whose cone marched its far
+// samples takes that cone's far part (ConeTail) instead of marching its own: the next lit sample in a
+// cloud is tens of metres away, its far samples hundreds. The march takes the cone's density lookups
 // one per loop iteration (marchClouds says why), so the cone is a small state.
 struct LightCone
 {
@@ -32,9 +35,20 @@ struct LightCone
     float coveredM;        // the length the cone steps so far cover
     float depth;           // relative density x metres so far
     float tailTransmittance;  // the light volume's transmittance of the rest; < 0: no volume here
+    float tailDepth;       // relative density x metres of the far samples: marched here, or taken over
+    bool tailTaken;        // the far samples' depth is taken over from an earlier cone (ConeTail)
+    bool tailMarched;      // this cone marches its far samples (the next lit samples may take them)
 };
 
-LightCone beginLightCone(vec3 p, float distanceM)
+// The far samples of the last cone that marched them: where that cone started and their depth.
+struct ConeTail
+{
+    vec3 origin;
+    float depth;
+    bool valid;
+};
+
+LightCone beginLightCone(vec3 p, float distanceM, ConeTail tail)
 {
     LightCone c;
     c.origin = p;
@@ -50,6 +64,9 @@ LightCone beginLightCone(vec3 p, float distanceM)
     c.detailed = coarse ? 0u : uint(frame.marchLod.w);
     c.live = samples;
     c.tailTransmittance = -1.0f;
+    c.tailDepth = 0.0f;
+    c.tailTaken = false;
+    c.tailMarched = false;
     if (!coarse && c.detailed < samples)
     {
         float h;
@@ -66,6 +83,14 @@ LightCone beginLightCone(vec3 p, float distanceM)
             c.live = c.detailed;
             c.tailTransmittance = textureLod(lightVolumeFar, uvw, 0.0f).x;
         }
+        else if (tail.valid && distanceM > frame.lightVolumeFar.w && distance(p, tail.origin) < frame.lightVolume.w)
+        {
+            c.live = c.detailed;
+            c.tailDepth = tail.depth;
+            c.tailTaken = true;
+        }
+        else
+            c.tailMarched = true;
     }
     c.next = 0u;
     c.coveredM = 0.0f;
@@ -76,7 +101,7 @@ LightCone beginLightCone(vec3 p, float distanceM)
 // True when the cone has no density lookup left (its optical depth is final).
 bool lightConeDone(LightCone c)
 {
-    return c.next > c.live || (c.next == c.live && c.tailTransmittance >= 0.0f);
+    return c.next > c.live || (c.next == c.live && (c.tailTransmittance >= 0.0f || c.tailTaken));
 }
 
 // Where the cone's next density lookup goes, whether it is cheap, and the metres it stands for.
@@ -96,6 +121,8 @@ vec3 lightConeSamplePoint(LightCone c, vec3 lightDir, out bool cheap, out float 
 void lightConeAdd(inout LightCone c, float density, float lengthM)
 {
     c.depth += density * lengthM;
+    if (c.next >= c.detailed)
+        c.tailDepth += density * lengthM;
     if (c.next < c.live)
         c.coveredM += lengthM;
     ++c.next;
@@ -107,6 +134,8 @@ float lightConeOpticalDepth(LightCone c)
     // The volume holds transmittance (light_volume.h says why); 1e-7: below it, no light reaches.
     if (c.tailTransmittance >= 0.0f)
         return c.depth * frame.cloudLook.x - log(max(c.tailTransmittance, 1e-7f));
+    if (c.tailTaken)
+        return (c.depth + c.tailDepth) * frame.cloudLook.x;
     return c.depth * frame.cloudLook.x;
 }
 
@@ -203,7 +232,8 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
     float litSigmaE = 0.0f;
     float litHeightFraction = 0.0f;
     float litStepM = 0.0f;  // the step it stands for
-    LightCone cone = LightCone(vec3(0.0f), 0.0f, 1u, 0u, 0u, 0.0f, 0.0f, -1.0f);
+    LightCone cone = LightCone(vec3(0.0f), 0.0f, 1u, 0u, 0u, 0.0f, 0.0f, -1.0f, 0.0f, false, false);
+    ConeTail coneTail = ConeTail(vec3(0.0f), 0.0f, false);
     // The step of the last view sample: a bisection moves the sample to the surface it finds but keeps
     // the step length it was taken with.
     float dt = baseStep;
@@ -345,13 +375,15 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             float stepDepth = litSigmaE * litStepM;
             float lightDepthM = stepDepth < 1e-3f ? 0.5f * litStepM
                                                   : 1.0f / litSigmaE - litStepM / (exp(stepDepth) - 1.0f);
-            cone = beginLightCone(dir * (t + lightDepthM), t);
+            cone = beginLightCone(dir * (t + lightDepthM), t, coneTail);
             state = MARCH_CONE;
         }
         else
             lightConeAdd(cone, ds.density, coneLengthM);
         if (!lightConeDone(cone))
             continue;
+        if (cone.tailMarched)
+            coneTail = ConeTail(cone.origin, cone.tailDepth, true);
         float lightDepth = lightConeOpticalDepth(cone);
         vec3 source = litSigmaS * (lightAtCloud * multipleScattering(lightDepth, cosTheta, litSigmaS * 100.0f) +
                                    ambientLight(litHeightFraction));

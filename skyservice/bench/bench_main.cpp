@@ -66,6 +66,8 @@ struct BenchOptions
     bool noDetail = false;
     bool noSkipping = false;
     bool noCostOrder = false;
+    double coneTailReuseM = -1;  ///< < 0: the renderer's default
+    double coneTailReuseBeyondM = -1;  ///< < 0: the renderer's default
     bool noFarLightVolume = false;
     uint32_t gpuFrames = 1;
     bool shadowMap = false;
@@ -96,7 +98,8 @@ nlohmann::json qualityJson(const QualitySettings& q)
             {"lightVolumeMinRays", q.lightVolumeMinRays}, {"detailMinTransmittance", q.detailMinTransmittance},
             {"deepStepFactor", q.deepStepFactor},
             {"maxStepOpticalDepth", q.maxStepOpticalDepth}, {"emptySpaceSkipping", q.emptySpaceSkipping},
-            {"lightVolumeFarCascade", q.lightVolumeFarCascade}};
+            {"lightVolumeFarCascade", q.lightVolumeFarCascade}, {"coneTailReuseM", q.coneTailReuseM},
+            {"coneTailReuseBeyondM", q.coneTailReuseBeyondM}};
 }
 
 // Box-filters an image down by an integer factor (contact sheet tiles only).
@@ -232,6 +235,10 @@ int runBench(const BenchOptions& o)
         quality.detail = false;
     if (o.noCostOrder)
         quality.costOrderedMarch = false;
+    if (o.coneTailReuseM >= 0)
+        quality.coneTailReuseM = o.coneTailReuseM;
+    if (o.coneTailReuseBeyondM >= 0)
+        quality.coneTailReuseBeyondM = o.coneTailReuseBeyondM;
     if (o.noSkipping)
         quality.emptySpaceSkipping = false;
     if (o.noFarLightVolume)
@@ -352,6 +359,12 @@ int main(int argc, char** argv)
     app.add_flag("--no-skipping", o.noSkipping, "Turn the march's empty-space skipping off (search every step)");
     app.add_flag("--no-cost-order", o.noCostOrder,
                  "Launch the march's workgroup rows in the interleaved order, not costliest first");
+    app.add_option("--cone-tail-reuse", o.coneTailReuseM,
+                   "Lit samples within this distance (m) of the last full cone take its far samples (0: never)")
+        ->check(CLI::Range(0.0, 5000.0));
+    app.add_option("--cone-tail-reuse-beyond", o.coneTailReuseBeyondM,
+                   "Only lit samples farther than this (m) take an earlier cone's far samples")
+        ->check(CLI::Range(0.0, 1e6));
     app.add_flag("--no-far-light-volume", o.noFarLightVolume, "No far cascade of the light volume");
     app.add_option("--full-cone-samples", o.fullConeSamples, "Cone samples that may take the detailed density")
         ->check(CLI::Range(0, 6));

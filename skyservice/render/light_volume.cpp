@@ -46,12 +46,17 @@ void placeLightVolume(const QualitySettings& quality, FrameParams& frame)
     const bool hasVolumetricCloud = frame.shell.y > frame.shell.x;
     const uint32_t block = std::max(frame.reprojection.x, 1u);
     const uint64_t rays = uint64_t((frame.image.x + block - 1) / block) * uint64_t((frame.image.y + block - 1) / block);
-    if (quality.lightVolumeTexelM <= 0.0 || quality.fullConeSamples >= samples || !hasVolumetricCloud ||
-        rays < quality.lightVolumeMinRays)
-        return;
-    frame.lightVolume = volumePlacement(frame, quality.lightVolumeTexelM);
-    if (quality.lightVolumeFarCascade)
-        frame.lightVolumeFar = volumePlacement(frame, quality.lightVolumeTexelM * LIGHT_VOLUME_FAR_SCALE);
+    if (quality.lightVolumeTexelM > 0.0 && quality.fullConeSamples < samples && hasVolumetricCloud &&
+        rays >= quality.lightVolumeMinRays)
+    {
+        frame.lightVolume = volumePlacement(frame, quality.lightVolumeTexelM);
+        if (quality.lightVolumeFarCascade)
+            frame.lightVolumeFar = volumePlacement(frame, quality.lightVolumeTexelM * LIGHT_VOLUME_FAR_SCALE);
+    }
+    // Where neither volume reaches, lit samples this close to the last cone that marched its far
+    // samples take those (cloud_lighting.glsl ConeTail).
+    frame.lightVolume.w = float(std::max(quality.coneTailReuseM, 0.0));
+    frame.lightVolumeFar.w = float(std::max(quality.coneTailReuseBeyondM, 0.0));
 }
 
 namespace
