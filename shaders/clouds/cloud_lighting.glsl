@@ -234,6 +234,10 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
     float litStepM = 0.0f;  // the step it stands for
     LightCone cone = LightCone(vec3(0.0f), 0.0f, 1u, 0u, 0u, 0.0f, 0.0f, -1.0f, 0.0f, false, false);
     ConeTail coneTail = ConeTail(vec3(0.0f), 0.0f, false);
+    // The last cone marched here (not taken over): where it started and its optical depth; deep lit samples
+    // within frame.detailLod.w metres of it take that light.
+    vec3 lastConeOrigin = vec3(0.0f);
+    float lastConeDepth = -1.0f;
     // The step of the last view sample: a bisection moves the sample to the surface it finds but keeps
     // the step length it was taken with.
     float dt = baseStep;
@@ -375,7 +379,14 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             float stepDepth = litSigmaE * litStepM;
             float lightDepthM = stepDepth < 1e-3f ? 0.5f * litStepM
                                                   : 1.0f / litSigmaE - litStepM / (exp(stepDepth) - 1.0f);
-            cone = beginLightCone(dir * (t + lightDepthM), t, coneTail);
+            vec3 litPoint = dir * (t + lightDepthM);
+            if (deep && lastConeDepth >= 0.0f && distance(litPoint, lastConeOrigin) < frame.detailLod.w)
+            {
+                // Behind a view transmittance below frame.detailLod.x the light of the last cone, finished.
+                cone = LightCone(litPoint, 0.0f, 0u, 0u, 0u, 0.0f, 0.0f, exp(-lastConeDepth), 0.0f, false, false);
+            }
+            else
+                cone = beginLightCone(litPoint, t, coneTail);
             state = MARCH_CONE;
         }
         else
@@ -385,6 +396,11 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
         if (cone.tailMarched)
             coneTail = ConeTail(cone.origin, cone.tailDepth, true);
         float lightDepth = lightConeOpticalDepth(cone);
+        if (cone.live > 0u)
+        {
+            lastConeOrigin = cone.origin;
+            lastConeDepth = lightDepth;
+        }
         vec3 source = litSigmaS * (lightAtCloud * multipleScattering(lightDepth, cosTheta, litSigmaS * 100.0f) +
                                    ambientLight(litHeightFraction));
         radiance += transmittance * integrateScattering(source, litSigmaE, litStepM);

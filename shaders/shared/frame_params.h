@@ -65,7 +65,8 @@ struct FrameParams
     vec4 lightVolume;
     // x: view samples behind a transmittance below this take the base shape without detail erosion (0:
     // never; QualitySettings::detailMinTransmittance); y: those samples step this many times further; z: a
-    // step inside a cloud covers at most this optical depth (0: no limit; maxStepOpticalDepth); w: unused.
+    // step inside a cloud covers at most this optical depth (0: no limit; maxStepOpticalDepth); w: deep lit
+    // samples within this distance (m) of the last cone marched take its light (0: never; deepLightReuseM).
     vec4 detailLod;
     // The light volume's far cascade (light_volume.h), as lightVolume: xy corner, z texel size (m; 0: none);
     // w: only lit samples farther than this from the eye (m) take an earlier cone's far samples

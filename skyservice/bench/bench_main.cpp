@@ -68,6 +68,7 @@ struct BenchOptions
     bool noCostOrder = false;
     double coneTailReuseM = -1;  ///< < 0: the renderer's default
     double coneTailReuseBeyondM = -1;  ///< < 0: the renderer's default
+    double deepLightReuseM = -1;       ///< < 0: the renderer's default
     bool noFarLightVolume = false;
     uint32_t gpuFrames = 1;
     bool shadowMap = false;
@@ -99,7 +100,7 @@ nlohmann::json qualityJson(const QualitySettings& q)
             {"deepStepFactor", q.deepStepFactor},
             {"maxStepOpticalDepth", q.maxStepOpticalDepth}, {"emptySpaceSkipping", q.emptySpaceSkipping},
             {"lightVolumeFarCascade", q.lightVolumeFarCascade}, {"coneTailReuseM", q.coneTailReuseM},
-            {"coneTailReuseBeyondM", q.coneTailReuseBeyondM}};
+            {"coneTailReuseBeyondM", q.coneTailReuseBeyondM}, {"deepLightReuseM", q.deepLightReuseM}};
 }
 
 // Box-filters an image down by an integer factor (contact sheet tiles only).
@@ -239,6 +240,8 @@ int runBench(const BenchOptions& o)
         quality.coneTailReuseM = o.coneTailReuseM;
     if (o.coneTailReuseBeyondM >= 0)
         quality.coneTailReuseBeyondM = o.coneTailReuseBeyondM;
+    if (o.deepLightReuseM >= 0)
+        quality.deepLightReuseM = o.deepLightReuseM;
     if (o.noSkipping)
         quality.emptySpaceSkipping = false;
     if (o.noFarLightVolume)
@@ -365,6 +368,9 @@ int main(int argc, char** argv)
     app.add_option("--cone-tail-reuse-beyond", o.coneTailReuseBeyondM,
                    "Only lit samples farther than this (m) take an earlier cone's far samples")
         ->check(CLI::Range(0.0, 1e6));
+    app.add_option("--deep-light-reuse", o.deepLightReuseM,
+                   "Deep lit samples within this distance (m) of the last marched cone take its light (0: never)")
+        ->check(CLI::Range(0.0, 5000.0));
     app.add_flag("--no-far-light-volume", o.noFarLightVolume, "No far cascade of the light volume");
     app.add_option("--full-cone-samples", o.fullConeSamples, "Cone samples that may take the detailed density")
         ->check(CLI::Range(0, 6));

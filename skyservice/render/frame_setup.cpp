@@ -141,7 +141,7 @@ FrameParams makeFrameParams(const FrameInputs& in)
     f.marchLod = vec4(float(q.detailFadeStartM), float(std::max(q.detailFadeEndM, q.detailFadeStartM + 1.0)),
                       float(std::max(q.lightLodDistanceM, 0.0)), float(q.fullConeSamples));
     f.detailLod = vec4(float(q.detailMinTransmittance), float(std::max(q.deepStepFactor, 1.0)),
-                       float(std::max(q.maxStepOpticalDepth, 0.0)), 0.0f);
+                       float(std::max(q.maxStepOpticalDepth, 0.0)), float(std::max(q.deepLightReuseM, 0.0)));
     f.worldJitter = vec4(float(2.0 * std::tan(req.fovYDeg * M_PI / 360.0) / double(req.height)), 0.0f, 0.0f, 0.0f);
     f.reprojection = uvec4(1u, 0u, 0u, 0u);  // full resolution unless the renderer's reprojected path says otherwise
     return f;

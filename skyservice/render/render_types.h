@@ -35,6 +35,11 @@ struct QualitySettings
     /// nearer the cloud's surface brighten the cloud (a sunset deck 1.6/255 on average at 200 m, light
     /// volume off). 15 km is about where the light volume's far cascade ends.
     double coneTailReuseBeyondM = 15000.0;
+    /// Deep lit samples (behind a view transmittance below detailMinTransmittance) within this distance
+    /// (m) of the last cone marched take its light and march none (0: each marches its own). What they
+    /// add reaches the eye through less than a tenth. H200, 1080p: inside-cloud -10 % reprojected, -13 %
+    /// full, the deck -6 % full; the 320x180 contact sheet 59.9 dB of 0 (BENCHMARKS.md, eighth session).
+    double deepLightReuseM = 400.0;
     /// Texel size of the light volume on the ground (m; LIGHT_VOLUME_SIZE texels a side); 0: no volume,
     /// every cone sample marched.
     double lightVolumeTexelM = 160.0;
