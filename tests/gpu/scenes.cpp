@@ -126,6 +126,12 @@ ViewRequest cumulonimbusView(const std::string& timeIso)
     return v;
 }
 
+ViewRequest builtinCumulonimbus320(Renderer& r)
+{
+    setWeather(r, makeBuiltinWeather(0));
+    return cumulonimbusView("2026-06-21T15:00:00Z");  // 320x180
+}
+
 ImageStats cloudStats(const RenderResult& r, uint32_t rowEnd)
 {
     ImageStats s;

@@ -28,6 +28,9 @@ ViewRequest lookUp(double latDeg, double lonDeg, double altM, double pitchDeg, c
 ViewRequest lookDown(double latDeg, double lonDeg, double altM, int64_t unixTimeS);
 /// 40 km west of the built-in cumulonimbus at 4500 m (above the cumulus field), looking east.
 ViewRequest cumulonimbusView(const std::string& timeIso);
+/// Gives `r` the built-in weather and returns cumulonimbusView at 2026-06-21 15:00 UTC, 320x180: the
+/// tower and the cumulus field beyond the light volume, cloudy rows and clear ones.
+ViewRequest builtinCumulonimbus320(Renderer& r);
 
 struct ImageStats
 {

@@ -3,7 +3,6 @@
 // of the last cone that marched it (QualitySettings::coneTailReuseM, ConeTail), deep ones the whole light
 // of the last cone (deepLightReuseM). The march takes fewer lookups, the picture stays that of every cone
 // marched in full, and lit samples nearer than coneTailReuseBeyondM march their own cones.
-#include "skyservice/sky/builtin_weather.h"
 #include "tests/gpu/gpu_fixture.h"
 #include "tests/gpu/image_compare.h"
 #include "tests/gpu/scenes.h"
@@ -22,16 +21,6 @@ namespace
 class ConeTail : public GpuFixture
 {
 protected:
-    // The built-in weather's cumulonimbus from 40 km at 320x180 (full resolution): the tower and the
-    // cumulus field around it lie beyond the light volume.
-    static ViewRequest cumulonimbus320()
-    {
-        setWeather(*renderer, makeBuiltinWeather(0));
-        ViewRequest v = cumulonimbusView("2026-06-21T15:00:00Z");
-        v.width = 320;
-        v.height = 180;
-        return v;
-    }
     static QualitySettings quality(double reuseM, double beyondM)
     {
         QualitySettings q = testQuality();
@@ -49,7 +38,7 @@ protected:
 
 TEST_F(ConeTail, FarLitSamplesTakeTheLastTailAndKeepThePicture)
 {
-    const ViewRequest v = cumulonimbus320();
+    const ViewRequest v = builtinCumulonimbus320(*renderer);
     const RenderResult marched = renderOk(v, quality(0.0, 15000.0));
     const RenderResult reused = renderOk(v, quality(400.0, 15000.0));
     ASSERT_GT(cloudStats(marched).cloudPixels, 5000u);
@@ -68,7 +57,7 @@ TEST_F(ConeTail, FarLitSamplesTakeTheLastTailAndKeepThePicture)
 
 TEST_F(ConeTail, LitSamplesNearerThanTheLimitMarchTheirOwnCones)
 {
-    const ViewRequest v = cumulonimbus320();
+    const ViewRequest v = builtinCumulonimbus320(*renderer);
     const RenderResult marched = renderOk(v, quality(0.0, 15000.0));
     // Nothing lies beyond 1000 km: no tail is taken, and the picture is the same to the bit.
     const RenderResult limited = renderOk(v, quality(400.0, 1.0e6));

@@ -3,7 +3,6 @@
 // device (lavapipe in CI), validation on.
 #include "skyservice/render/march_order.h"
 #include "skyservice/render/renderer.h"
-#include "skyservice/sky/builtin_weather.h"
 #include "tests/gpu/gpu_fixture.h"
 #include "tests/gpu/scenes.h"
 
@@ -22,16 +21,6 @@ namespace
 
 class MarchOrderGpu : public GpuFixture
 {
-protected:
-    // The built-in weather's cumulonimbus at 320x180: cloudy rows and clear ones.
-    static ViewRequest cumulonimbus320()
-    {
-        setWeather(*renderer, makeBuiltinWeather(0));
-        ViewRequest v = cumulonimbusView("2026-06-21T15:00:00Z");
-        v.width = 320;
-        v.height = 180;
-        return v;
-    }
 };
 
 // Whether any pixel of image rows [y0, y1) has a cloud alpha above 0.5.
@@ -50,7 +39,7 @@ bool rowsHoldCloud(const RenderResult& r, uint32_t y0, uint32_t y1)
 // what the first frame counted: the same bytes, the same counts, and the costly rows are the cloudy ones.
 TEST_F(MarchOrderGpu, CostliestFirstChangesNoPixelAndFollowsTheLastCount)
 {
-    const ViewRequest v = cumulonimbus320();
+    const ViewRequest v = builtinCumulonimbus320(*renderer);
     QualitySettings interleaved = testQuality();
     interleaved.costOrderedMarch = false;
     QualitySettings costly = testQuality();
@@ -89,7 +78,7 @@ TEST_F(MarchOrderGpu, CostliestFirstChangesNoPixelAndFollowsTheLastCount)
 // starts again from the interleaved order, and a reprojected frame after that follows its own count.
 TEST_F(MarchOrderGpu, ReprojectedFramesOrderTheirOwnRows)
 {
-    const ViewRequest v = cumulonimbus320();
+    const ViewRequest v = builtinCumulonimbus320(*renderer);
     QualitySettings full = testQuality();
     QualitySettings reprojected = reprojectedQuality();
     RenderResult first = renderOk(v, reprojected);
