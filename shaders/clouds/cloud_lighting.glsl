@@ -24,7 +24,10 @@ vec3 keyLightAt(vec3 p, vec3 lightDir)
 // volume, a lit sample within frame.lightVolume.w metres of the last one whose cone marched its far
 // samples takes that cone's far part (ConeTail) instead of marching its own: the next lit sample in a
 // cloud is tens of metres away, its far samples hundreds. The march takes the cone's density lookups
-// one per loop iteration (marchClouds says why), so the cone is a small state.
+// one per loop iteration (marchClouds says why), so the cone is a small state. Beyond frame.march.z
+// metres (0: never) the detailed near samples are taken as one sample over their length: there the
+// detail erosion has faded out and a pixel spans tens of metres. The frame ends when its costliest rays
+// do, and those are far ones (the horizon bands, the Cb's surroundings).
 struct LightCone
 {
     vec3 origin;           // the lit point (ENU m)
@@ -38,6 +41,7 @@ struct LightCone
     float tailDepth;       // relative density x metres of the far samples: marched here, or taken over
     bool tailTaken;        // the far samples' depth is taken over from an earlier cone (ConeTail)
     bool tailMarched;      // this cone marches its far samples (the next lit samples may take them)
+    bool nearMerged;       // its detailed near samples are taken as one, over their whole length
 };
 
 // The far samples of the last cone that marched them: where that cone started and their depth.
@@ -67,6 +71,7 @@ LightCone beginLightCone(vec3 p, float distanceM, ConeTail tail)
     c.tailDepth = 0.0f;
     c.tailTaken = false;
     c.tailMarched = false;
+    c.nearMerged = frame.march.z > 0u && distanceM > float(frame.march.z) && c.detailed > 1u && c.detailed <= samples;
     if (!coarse && c.detailed < samples)
     {
         float h;
@@ -107,6 +112,13 @@ bool lightConeDone(LightCone c)
 // Where the cone's next density lookup goes, whether it is cheap, and the metres it stands for.
 vec3 lightConeSamplePoint(LightCone c, vec3 lightDir, out bool cheap, out float lengthM)
 {
+    if (c.next == 0u && c.nearMerged)
+    {
+        // Steps 1..detailed of stepM * i cover stepM * n(n+1)/2.
+        lengthM = c.stepM * float(c.detailed * (c.detailed + 1u) / 2u);
+        cheap = false;
+        return coneSamplePoint(c.origin, lightDir, 0u, lengthM, lengthM);
+    }
     if (c.next < c.live)
     {
         lengthM = c.stepM * float(c.next + 1u);
@@ -125,7 +137,7 @@ void lightConeAdd(inout LightCone c, float density, float lengthM)
         c.tailDepth += density * lengthM;
     if (c.next < c.live)
         c.coveredM += lengthM;
-    ++c.next;
+    c.next = c.next == 0u && c.nearMerged ? c.detailed : c.next + 1u;
 }
 
 // Optical depth toward the light of a finished cone.
@@ -232,7 +244,7 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
     float litSigmaE = 0.0f;
     float litHeightFraction = 0.0f;
     float litStepM = 0.0f;  // the step it stands for
-    LightCone cone = LightCone(vec3(0.0f), 0.0f, 1u, 0u, 0u, 0.0f, 0.0f, -1.0f, 0.0f, false, false);
+    LightCone cone = LightCone(vec3(0.0f), 0.0f, 1u, 0u, 0u, 0.0f, 0.0f, -1.0f, 0.0f, false, false, false);
     ConeTail coneTail = ConeTail(vec3(0.0f), 0.0f, false);
     // The last cone marched here (not taken over): where it started and its optical depth; deep lit samples
     // within frame.detailLod.w metres of it take that light.
@@ -383,7 +395,7 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             if (deep && lastConeDepth >= 0.0f && distance(litPoint, lastConeOrigin) < frame.detailLod.w)
             {
                 // Behind a view transmittance below frame.detailLod.x the light of the last cone, finished.
-                cone = LightCone(litPoint, 0.0f, 0u, 0u, 0u, 0.0f, 0.0f, exp(-lastConeDepth), 0.0f, false, false);
+                cone = LightCone(litPoint, 0.0f, 0u, 0u, 0u, 0.0f, 0.0f, exp(-lastConeDepth), 0.0f, false, false, false);
             }
             else
                 cone = beginLightCone(litPoint, t, coneTail);

@@ -36,7 +36,8 @@ struct FrameParams
     vec4 ambientGround;  // rgb: irradiance on the ground (for light bounced up into cloud bases); w: unused
     vec4 exposure;       // x: display exposure multiplier; y: animation time (s); zw: sub-pixel jitter of the view rays (pixels)
     uvec4 image;         // x: width; y: height; z: frame index (decorrelates the march jitter); w: flags (FRAME_FLAG_*)
-    uvec4 march;         // x: max view steps; y: light samples (cone); zw: unused
+    uvec4 march;         // x: max view steps; y: light samples (cone); z: beyond this distance (m) the cone's
+                         // detailed near samples are taken as one (0: never; coneNearMergeBeyondM); w: unused
     // Temporal reprojection (skyservice/render/reprojection.h). The previous camera is given in the
     // current eye's ENU frame, computed in double on the CPU (DESIGN §4).
     // reprojection x: block size (1: full resolution, 4: one pixel of each 4x4 block marched);

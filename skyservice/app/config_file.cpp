@@ -55,6 +55,7 @@ std::map<std::string, Key> keys()
         {"lighting.cone_tail_reuse_m", real(&QualitySettings::coneTailReuseM, 0, 5000)},
         {"lighting.cone_tail_reuse_beyond_m", real(&QualitySettings::coneTailReuseBeyondM, 0, 1e6)},
         {"lighting.deep_light_reuse_m", real(&QualitySettings::deepLightReuseM, 0, 5000)},
+        {"lighting.cone_near_merge_beyond_m", real(&QualitySettings::coneNearMergeBeyondM, 0, 1e7)},
         {"lighting.light_volume_texel_m", real(&QualitySettings::lightVolumeTexelM, 0, 5000)},
         {"lighting.light_volume_min_rays", u32(&QualitySettings::lightVolumeMinRays, 0, 4294967295.0)},
         {"lighting.ambient_strength", real(&QualitySettings::ambientStrength, 0, 10)},

@@ -69,6 +69,8 @@ struct BenchOptions
     double coneTailReuseM = -1;  ///< < 0: the renderer's default
     double coneTailReuseBeyondM = -1;  ///< < 0: the renderer's default
     double deepLightReuseM = -1;       ///< < 0: the renderer's default
+    double coneNearMergeBeyondM = -1;  ///< < 0: the renderer's default
+    int64_t octaves = -1;              ///< < 0: the renderer's default
     bool noFarLightVolume = false;
     uint32_t gpuFrames = 1;
     bool shadowMap = false;
@@ -100,7 +102,8 @@ nlohmann::json qualityJson(const QualitySettings& q)
             {"deepStepFactor", q.deepStepFactor},
             {"maxStepOpticalDepth", q.maxStepOpticalDepth}, {"emptySpaceSkipping", q.emptySpaceSkipping},
             {"lightVolumeFarCascade", q.lightVolumeFarCascade}, {"coneTailReuseM", q.coneTailReuseM},
-            {"coneTailReuseBeyondM", q.coneTailReuseBeyondM}, {"deepLightReuseM", q.deepLightReuseM}};
+            {"coneTailReuseBeyondM", q.coneTailReuseBeyondM}, {"deepLightReuseM", q.deepLightReuseM},
+            {"coneNearMergeBeyondM", q.coneNearMergeBeyondM}};
 }
 
 // Box-filters an image down by an integer factor (contact sheet tiles only).
@@ -242,6 +245,10 @@ int runBench(const BenchOptions& o)
         quality.coneTailReuseBeyondM = o.coneTailReuseBeyondM;
     if (o.deepLightReuseM >= 0)
         quality.deepLightReuseM = o.deepLightReuseM;
+    if (o.octaves >= 0)
+        quality.octaves = uint32_t(o.octaves);
+    if (o.coneNearMergeBeyondM >= 0)
+        quality.coneNearMergeBeyondM = o.coneNearMergeBeyondM;
     if (o.noSkipping)
         quality.emptySpaceSkipping = false;
     if (o.noFarLightVolume)
@@ -371,6 +378,11 @@ int main(int argc, char** argv)
     app.add_option("--deep-light-reuse", o.deepLightReuseM,
                    "Deep lit samples within this distance (m) of the last marched cone take its light (0: never)")
         ->check(CLI::Range(0.0, 5000.0));
+    app.add_option("--octaves", o.octaves, "Multiple-scattering octaves (default: the renderer's)")
+        ->check(CLI::Range(1, 8));
+    app.add_option("--cone-near-merge-beyond", o.coneNearMergeBeyondM,
+                   "Beyond this distance (m) a cone's detailed near samples are taken as one (0: never)")
+        ->check(CLI::Range(0.0, 1e7));
     app.add_flag("--no-far-light-volume", o.noFarLightVolume, "No far cascade of the light volume");
     app.add_option("--full-cone-samples", o.fullConeSamples, "Cone samples that may take the detailed density")
         ->check(CLI::Range(0, 6));

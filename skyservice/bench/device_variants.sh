@@ -7,7 +7,8 @@
 # VARIANTS: option sets separated by ';' (a blank one: the defaults). SCENES (default: all eight),
 # SIZES (default 1920x1080; reprojected mode, 100 frames after 20 warm-up), FULL_SIZES (default 1920x1080:
 # all scenes in full mode, 4 GPU frames per sample, each option set; empty: none), BUILD (a folder with
-# sky-bench and spirv/; default .gpu/prebuilt with .gpu/spirv). Everything lands in $OUT/r.tgz; the
+# sky-bench and spirv/; default .gpu/prebuilt with .gpu/spirv), SPIRVS (optional: one SPIR-V folder per
+# option set, separated by ';', for A/B of shader builds; blank entries keep BUILD's). Everything lands in $OUT/r.tgz; the
 # tables (median total ms per scene and option set), the baseline at each size and the clock check are
 # printed.
 set -u
@@ -22,12 +23,14 @@ $BENCH --scene clear --width 64 --height 64 --frames 1 --warmup 0 --device NVIDI
 nvidia-smi --query-gpu=timestamp,clocks.sm --format=csv,noheader -lms 200 > $R/clocks.csv 2>/dev/null &
 CLK=$!
 IFS=';' read -ra VARS <<< "${VARIANTS:- }"
+IFS=';' read -ra SPVS <<< "${SPIRVS:-}"
+spirv_of() { local d=${SPVS[$1]:-}; d=${d// /}; echo "${d:-$SKY_SPIRV_DIR}"; }
 ALL="clear scattered-cumulus stratocumulus-deck cumulonimbus cirrus-only inside-cloud above-deck-FL350 sunset"
 for size in ${SIZES:-1920x1080}; do
   for sc in ${SCENES:-$ALL}; do
     for i in "${!VARS[@]}"; do
       # shellcheck disable=SC2086
-      timeout 90 $BENCH --scene $sc --width ${size%x*} --height ${size#*x} --frames 100 --warmup 20 --mode reprojected \
+      SKY_SPIRV_DIR=$(spirv_of $i) timeout 90 $BENCH --scene $sc --width ${size%x*} --height ${size#*x} --frames 100 --warmup 20 --mode reprojected \
         --device NVIDIA --json $R/rep-$size-$sc-v$i.json ${VARS[$i]} > $R/rep-$size-$sc-v$i.txt 2>&1
     done
   done
@@ -35,7 +38,7 @@ done
 for size in ${FULL_SIZES-1920x1080}; do
   for i in "${!VARS[@]}"; do
     # shellcheck disable=SC2086
-    timeout 150 $BENCH --scene all --width ${size%x*} --height ${size#*x} --frames 100 --warmup 10 --gpu-frames 4 \
+    SKY_SPIRV_DIR=$(spirv_of $i) timeout 150 $BENCH --scene all --width ${size%x*} --height ${size#*x} --frames 100 --warmup 10 --gpu-frames 4 \
       --device NVIDIA --json $R/full-$size-v$i.json ${VARS[$i]} > $R/full-$size-v$i.txt 2>&1
   done
 done

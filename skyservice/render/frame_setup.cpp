@@ -137,7 +137,7 @@ FrameParams makeFrameParams(const FrameInputs& in)
     if (!q.emptySpaceSkipping)
         flags |= FRAME_FLAG_NO_SKIPPING;
     f.image = uvec4(req.width, req.height, 0u, flags);
-    f.march = uvec4(q.maxViewSteps, q.lightSamples, 0u, 0u);
+    f.march = uvec4(q.maxViewSteps, q.lightSamples, uint32_t(std::clamp(q.coneNearMergeBeyondM, 0.0, 1e9)), 0u);
     f.marchLod = vec4(float(q.detailFadeStartM), float(std::max(q.detailFadeEndM, q.detailFadeStartM + 1.0)),
                       float(std::max(q.lightLodDistanceM, 0.0)), float(q.fullConeSamples));
     f.detailLod = vec4(float(q.detailMinTransmittance), float(std::max(q.deepStepFactor, 1.0)),

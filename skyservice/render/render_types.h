@@ -40,6 +40,13 @@ struct QualitySettings
     /// add reaches the eye through less than a tenth. H200, 1080p: inside-cloud -10 % reprojected, -13 %
     /// full, the deck -6 % full; the 320x180 contact sheet 59.9 dB of 0 (BENCHMARKS.md, eighth session).
     double deepLightReuseM = 400.0;
+    /// Beyond this distance (m) a light cone's detailed near samples (fullConeSamples) are taken as one
+    /// sample over their length (0: never): there the detail erosion has faded out (detailFadeEndM) and a
+    /// pixel spans tens of metres. One density lookup fewer per far lit sample, and the frame's costliest
+    /// rays are far ones. The single sample sees less of a cloud's thin sunlit skin: nearer than 40 km
+    /// the picture brightens (the 320x180 contact sheet of the bench scenes 46.2 dB of 0 at 25 km, 51.4
+    /// dB at 40 km; FL350's deck 39.3 / 43.9 dB). BENCHMARKS.md, ninth session; test_cone_tail.cpp.
+    double coneNearMergeBeyondM = 40000.0;
     /// Texel size of the light volume on the ground (m; LIGHT_VOLUME_SIZE texels a side); 0: no volume,
     /// every cone sample marched.
     double lightVolumeTexelM = 160.0;
