@@ -43,9 +43,11 @@ struct QualitySettings
     /// Beyond this distance (m) a light cone's detailed near samples (fullConeSamples) are taken as one
     /// sample over their length (0: never): there the detail erosion has faded out (detailFadeEndM) and a
     /// pixel spans tens of metres. One density lookup fewer per far lit sample, and the frame's costliest
-    /// rays are far ones. The single sample sees less of a cloud's thin sunlit skin: nearer than 40 km
-    /// the picture brightens (the 320x180 contact sheet of the bench scenes 46.2 dB of 0 at 25 km, 51.4
-    /// dB at 40 km; FL350's deck 39.3 / 43.9 dB). BENCHMARKS.md, ninth session; test_cone_tail.cpp.
+    /// rays are far ones (H200, 1080p reprojected: sunset -10 %, FL350 -7 %). The single sample sees less
+    /// of a cloud's thin sunlit skin, so the clouds it lights come out brighter (+1.2 % in the test); a
+    /// nearer limit changes more of the picture (the 320x180 contact sheet of the bench scenes against 0:
+    /// 46.2 dB at 25 km, 51.4 dB at 40 km; FL350's deck 39.3 / 43.9 dB). BENCHMARKS.md, ninth session;
+    /// tests/gpu/test_cone_tail.cpp.
     double coneNearMergeBeyondM = 40000.0;
     /// Texel size of the light volume on the ground (m; LIGHT_VOLUME_SIZE texels a side); 0: no volume,
     /// every cone sample marched.
