@@ -395,7 +395,8 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             if (deep && lastConeDepth >= 0.0f && distance(litPoint, lastConeOrigin) < frame.detailLod.w)
             {
                 // Behind a view transmittance below frame.detailLod.x the light of the last cone, finished.
-                cone = LightCone(litPoint, 0.0f, 0u, 0u, 0u, 0.0f, 0.0f, exp(-lastConeDepth), 0.0f, false, false, false);
+                cone = LightCone(litPoint, 0.0f, 0u, 0u, 0u, 0.0f, 0.0f, exp(-lastConeDepth), 0.0f, false, false,
+                                 false);
             }
             else
                 cone = beginLightCone(litPoint, t, coneTail);

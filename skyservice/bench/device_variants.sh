@@ -8,9 +8,9 @@
 # SIZES (default 1920x1080; reprojected mode, 100 frames after 20 warm-up), FULL_SIZES (default 1920x1080:
 # all scenes in full mode, 4 GPU frames per sample, each option set; empty: none), BUILD (a folder with
 # sky-bench and spirv/; default .gpu/prebuilt with .gpu/spirv), SPIRVS (optional: one SPIR-V folder per
-# option set, separated by ';', for A/B of shader builds; blank entries keep BUILD's). Everything lands in $OUT/r.tgz; the
-# tables (median total ms per scene and option set), the baseline at each size and the clock check are
-# printed.
+# option set, separated by ';', for A/B of shader builds; blank entries keep BUILD's). Everything lands in
+# $OUT/r.tgz; the tables (median total ms per scene and option set), the baseline at each size and the
+# clock check are printed.
 set -u
 G=$PWD/.gpu; P=/tmp/deps; R=/tmp/r; mkdir -p $R $P
 for f in .gl/*.deb; do dpkg -x "$f" /; done; ldconfig
@@ -30,16 +30,18 @@ for size in ${SIZES:-1920x1080}; do
   for sc in ${SCENES:-$ALL}; do
     for i in "${!VARS[@]}"; do
       # shellcheck disable=SC2086
-      SKY_SPIRV_DIR=$(spirv_of $i) timeout 90 $BENCH --scene $sc --width ${size%x*} --height ${size#*x} --frames 100 --warmup 20 --mode reprojected \
-        --device NVIDIA --json $R/rep-$size-$sc-v$i.json ${VARS[$i]} > $R/rep-$size-$sc-v$i.txt 2>&1
+      SKY_SPIRV_DIR=$(spirv_of $i) timeout 90 $BENCH --scene $sc --width ${size%x*} --height ${size#*x} \
+        --frames 100 --warmup 20 --mode reprojected --device NVIDIA --json $R/rep-$size-$sc-v$i.json \
+        ${VARS[$i]} > $R/rep-$size-$sc-v$i.txt 2>&1
     done
   done
 done
 for size in ${FULL_SIZES-1920x1080}; do
   for i in "${!VARS[@]}"; do
     # shellcheck disable=SC2086
-    SKY_SPIRV_DIR=$(spirv_of $i) timeout 150 $BENCH --scene all --width ${size%x*} --height ${size#*x} --frames 100 --warmup 10 --gpu-frames 4 \
-      --device NVIDIA --json $R/full-$size-v$i.json ${VARS[$i]} > $R/full-$size-v$i.txt 2>&1
+    SKY_SPIRV_DIR=$(spirv_of $i) timeout 150 $BENCH --scene all --width ${size%x*} --height ${size#*x} \
+      --frames 100 --warmup 10 --gpu-frames 4 --device NVIDIA --json $R/full-$size-v$i.json \
+      ${VARS[$i]} > $R/full-$size-v$i.txt 2>&1
   done
 done
 kill $CLK
