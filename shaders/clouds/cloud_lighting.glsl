@@ -30,7 +30,7 @@ vec3 keyLightAt(vec3 p, vec3 lightDir)
 // do, and those are far ones (the horizon bands, the Cb's surroundings).
 struct LightCone
 {
-    vec3 origin;           // the lit point (ENU m)
+    float originT;         // the lit point's distance along the view ray (m): one register, not three
     float stepM;           // length of the first cone step; step i is (i + 1) x stepM
     uint next;             // the next cone sample (0-based); == live: the long sample, unless fromVolume
     uint live;             // cone samples marched here
@@ -47,15 +47,16 @@ struct LightCone
 // The far samples of the last cone that marched them: where that cone started and their depth.
 struct ConeTail
 {
-    vec3 origin;
+    float originT;  // along the view ray (m), as LightCone::originT
     float depth;
     bool valid;
 };
 
-LightCone beginLightCone(vec3 p, float distanceM, ConeTail tail)
+LightCone beginLightCone(vec3 dir, float originT, float distanceM, ConeTail tail)
 {
     LightCone c;
-    c.origin = p;
+    c.originT = originT;
+    vec3 p = dir * originT;
     c.stepM = frame.phaseTerms.w;
     uint samples = min(frame.march.y, 6u);
     bool coarse = frame.marchLod.z > 0.0f && distanceM > frame.marchLod.z;
@@ -88,7 +89,7 @@ LightCone beginLightCone(vec3 p, float distanceM, ConeTail tail)
             c.live = c.detailed;
             c.tailTransmittance = textureLod(lightVolumeFar, uvw, 0.0f).x;
         }
-        else if (tail.valid && distanceM > frame.lightVolumeFar.w && distance(p, tail.origin) < frame.lightVolume.w)
+        else if (tail.valid && distanceM > frame.lightVolumeFar.w && abs(originT - tail.originT) < frame.lightVolume.w)
         {
             c.live = c.detailed;
             c.tailDepth = tail.depth;
@@ -110,24 +111,25 @@ bool lightConeDone(LightCone c)
 }
 
 // Where the cone's next density lookup goes, whether it is cheap, and the metres it stands for.
-vec3 lightConeSamplePoint(LightCone c, vec3 lightDir, out bool cheap, out float lengthM)
+vec3 lightConeSamplePoint(LightCone c, vec3 dir, vec3 lightDir, out bool cheap, out float lengthM)
 {
+    vec3 origin = dir * c.originT;
     if (c.next == 0u && c.nearMerged)
     {
         // Steps 1..detailed of stepM * i cover stepM * n(n+1)/2.
         lengthM = c.stepM * float(c.detailed * (c.detailed + 1u) / 2u);
         cheap = false;
-        return coneSamplePoint(c.origin, lightDir, 0u, lengthM, lengthM);
+        return coneSamplePoint(origin, lightDir, 0u, lengthM, lengthM);
     }
     if (c.next < c.live)
     {
         lengthM = c.stepM * float(c.next + 1u);
         cheap = c.next >= c.detailed || c.depth * frame.cloudLook.x > 0.3f;
-        return coneSamplePoint(c.origin, lightDir, c.next, c.coveredM + lengthM, lengthM);
+        return coneSamplePoint(origin, lightDir, c.next, c.coveredM + lengthM, lengthM);
     }
     lengthM = c.coveredM;
     cheap = true;
-    return c.origin + lightDir * (3.0f * c.coveredM);
+    return origin + lightDir * (3.0f * c.coveredM);
 }
 
 void lightConeAdd(inout LightCone c, float density, float lengthM)
@@ -183,6 +185,13 @@ vec3 ambientLight(float heightFraction)
     return frame.cloudLook.z * (sky + ground);
 }
 
+// The view march's step near the eye (m); steps grow with distance beyond it (marchClouds). A function, not
+// a variable held through the march's loop.
+float marchBaseStepM()
+{
+    return clamp((frame.shell.y - frame.shell.x) / 64.0f, 30.0f, 250.0f);
+}
+
 // What a march iteration's one density lookup is for.
 const int MARCH_SEARCH = 0;   // cheap samples with double steps until a cloud is hit
 const int MARCH_FULL = 1;     // full view samples inside a cloud
@@ -200,12 +209,11 @@ const int MARCH_CONE = 3;     // the light cone of a lit view sample
 // `lookups` counts the loop's iterations (density lookups and skip checks): what the ray cost
 // (shaders/shared/march_order.h).
 void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout float transmittance,
-                 inout float depthWeighted, inout float depthWeight, inout uint lookups)
+                 inout float depthWeighted, inout float depthWeight, out uint lookups)
 {
-    vec3 lightDir = keyLightDirection();
-    float cosTheta = dot(dir, lightDir);
-    float thickness = frame.shell.y - frame.shell.x;
-    float baseStep = clamp(thickness / 64.0f, 30.0f, 250.0f);
+    // The light direction and its angle to the ray come from the uniforms where they are used, not from
+    // variables held through the loop (each would hold a register all the way).
+    float baseStep = marchBaseStepM();
     // Steps grow geometrically with distance, just fast enough to reach tExit within the step budget
     // (long grazing paths through a layer get 1-10% steps; short ones keep the base step).
     float ratio = max(tExit, 1.0f) / max(tEnter + baseStep, baseStep);
@@ -227,42 +235,46 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
     float skipStretchM = 0.0f;
     float recheckT = tEnter;
     bool outsideLayers = false;
-    int emptyFull = 0;
+    // MARCH_FULL: the empty full samples in a row; MARCH_BISECT: the halvings left (one variable: each
+    // variable carried through the loop holds a register all the way: BENCHMARKS.md, tenth session).
+    int stateCount = 0;
     // The budget counts full samples; cheap samples (no detail, no light march) may take as many again.
-    uint viewSamples = 0u;
-    uint fullSamples = 0u;
-    float lastEmptyT = tEnter;  // the last sample that found no cloud
+    // View samples in the low 16 bits, full samples in the high 16 (one register).
+    uint samples = 0u;
+    // The last sample that found no cloud. A bisection narrows [lastEmptyT, t] down to a cloud's surface:
+    // lastEmptyT stays empty, t in the cloud.
+    float lastEmptyT = tEnter;
     bool afterEmpty = true;     // the view sample before this one found no cloud
-    float bisectLo = 0.0f;
-    float bisectHi = 0.0f;
-    int bisectLeft = 0;
-    DensitySample surface;      // the sample at bisectHi
-    bool lit = false;
-    vec3 lightAtCloud = vec3(0.0f);
-    // The lit view sample whose light cone is being marched.
+    vec3 lightAtCloud = vec3(-1.0f);  // the key light at the ray's first lit sample; < 0: none yet
+    // The lit view sample whose light cone is being marched. During a bisection these three hold the sample
+    // at t instead (its density, rain rate and height fraction): the two are never needed at once,
+    // and each variable carried through the loop holds a register all the way (BENCHMARKS.md, tenth session).
     float litSigmaS = 0.0f;
     float litSigmaE = 0.0f;
     float litHeightFraction = 0.0f;
     float litStepM = 0.0f;  // the step it stands for
-    LightCone cone = LightCone(vec3(0.0f), 0.0f, 1u, 0u, 0u, 0.0f, 0.0f, -1.0f, 0.0f, false, false, false);
-    ConeTail coneTail = ConeTail(vec3(0.0f), 0.0f, false);
+    LightCone cone = LightCone(0.0f, 0.0f, 1u, 0u, 0u, 0.0f, 0.0f, -1.0f, 0.0f, false, false, false);
+    ConeTail coneTail = ConeTail(0.0f, 0.0f, false);
     // The last cone marched here (not taken over): where it started and its optical depth; deep lit samples
     // within frame.detailLod.w metres of it take that light.
-    vec3 lastConeOrigin = vec3(0.0f);
+    float lastConeT = 0.0f;
     float lastConeDepth = -1.0f;
     // The step of the last view sample: a bisection moves the sample to the surface it finds but keeps
     // the step length it was taken with.
     float dt = baseStep;
     // 13 lookups at most per view sample (itself, 5 bisection, 6 cone, the long one).
     uint lookupBudget = 13u * 2u * frame.march.x;
-    for (uint lookup = 0u; lookup < lookupBudget; ++lookup)
+    // `lookups` counts the iterations: it is the loop's counter too.
+    for (lookups = 0u; lookups < lookupBudget;)
     {
         bool viewSample = state == MARCH_SEARCH || state == MARCH_FULL;
+        uint viewSamples = samples & 0xffffu;
+        uint fullSamples = samples >> 16u;
         if (viewSample && (viewSamples >= 2u * frame.march.x || fullSamples >= frame.march.x || t >= tExit))
             break;
         ++lookups;
         if (viewSample)
-            dt = max(baseStep, t * growth);
+            dt = max(marchBaseStepM(), t * growth);
         if (state == MARCH_SEARCH && skipping && outsideLayers && t >= recheckT)
         {
             // Jump over a stretch the column bounds show empty (at least 4 search steps), doubling it
@@ -288,20 +300,20 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
         bool cheap = state == MARCH_SEARCH || deep;
         float coneLengthM = 0.0f;
         if (state == MARCH_BISECT)
-            q = dir * (0.5f * (bisectLo + bisectHi));
+            q = dir * (0.5f * (lastEmptyT + t));
         else if (state == MARCH_CONE)
-            q = lightConeSamplePoint(cone, lightDir, cheap, coneLengthM);
+            q = lightConeSamplePoint(cone, dir, keyLightDirection(), cheap, coneLengthM);
         DensitySample ds = cloudDensity(q, cheap, t);
         if (viewSample)
             outsideLayers = !ds.inLayer;
 
         if (state == MARCH_SEARCH)
         {
-            ++viewSamples;
+            samples += 1u;
             if (ds.density > 0.0f)
             {
                 state = MARCH_FULL;
-                emptyFull = 0;
+                stateCount = 0;
                 t = max(tEnter, t - dt);
             }
             else
@@ -314,13 +326,12 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
         }
         if (state == MARCH_FULL)
         {
-            ++viewSamples;
-            ++fullSamples;
+            samples += 0x10001u;
             if (ds.density <= 0.0f)
             {
                 lastEmptyT = t;
                 afterEmpty = true;
-                if (++emptyFull >= 6)
+                if (++stateCount >= 6)
                     state = MARCH_SEARCH;
                 t += deep ? dt * frame.detailLod.y : dt;
                 continue;
@@ -330,33 +341,34 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
                 // Entering a cloud with a long step: find its surface (as this sample sees the cloud: with
                 // detail erosion unless deep) by bisection, so that the sunlit skin (a mean free path is
                 // ~20 m) is lit and not a point up to a step inside it.
-                bisectLo = lastEmptyT;
-                bisectHi = t;
-                surface = ds;
-                bisectLeft = 5;
+                litSigmaS = ds.density;
+                litSigmaE = ds.rainMmH;
+                litHeightFraction = ds.heightFraction;
+                stateCount = 5;
                 state = MARCH_BISECT;
                 continue;
             }
         }
         if (state == MARCH_BISECT)
         {
-            float mid = 0.5f * (bisectLo + bisectHi);
+            float mid = 0.5f * (lastEmptyT + t);
             if (ds.density > 0.0f)
             {
-                bisectHi = mid;
-                surface = ds;
+                t = mid;
+                litSigmaS = ds.density;
+                litSigmaE = ds.rainMmH;
+                litHeightFraction = ds.heightFraction;
             }
             else
-                bisectLo = mid;
-            if (--bisectLeft > 0)
+                lastEmptyT = mid;
+            if (--stateCount > 0)
                 continue;
-            t = bisectHi;
-            ds = surface;
+            ds = DensitySample(litSigmaS, litSigmaE, litHeightFraction, true);
         }
         if (state != MARCH_CONE)
         {
             // A lit view sample (full, or at the surface a bisection found): start its light cone.
-            emptyFull = 0;
+            stateCount = 0;
             bool firstInCloud = afterEmpty;
             afterEmpty = false;
             litSigmaS = ds.density * frame.cloudLook.x;
@@ -380,26 +392,23 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             }
             if (deep)
                 litStepM *= frame.detailLod.y;
-            if (!lit)
-            {
-                lightAtCloud = keyLightAt(dir * t, lightDir);
-                lit = true;
-            }
+            if (lightAtCloud.x < 0.0f)
+                lightAtCloud = keyLightAt(dir * t, keyLightDirection());
             // Light the step where the eye sees it: at its mean depth weighted by the transmittance from
             // its start, 1/s - L e^-sL / (1 - e^-sL) (L/2 for a clear step, one mean free path for a
             // dense one).
             float stepDepth = litSigmaE * litStepM;
             float lightDepthM = stepDepth < 1e-3f ? 0.5f * litStepM
                                                   : 1.0f / litSigmaE - litStepM / (exp(stepDepth) - 1.0f);
-            vec3 litPoint = dir * (t + lightDepthM);
-            if (deep && lastConeDepth >= 0.0f && distance(litPoint, lastConeOrigin) < frame.detailLod.w)
+            float litT = t + lightDepthM;
+            if (deep && lastConeDepth >= 0.0f && abs(litT - lastConeT) < frame.detailLod.w)
             {
                 // Behind a view transmittance below frame.detailLod.x the light of the last cone, finished.
-                cone = LightCone(litPoint, 0.0f, 0u, 0u, 0u, 0.0f, 0.0f, exp(-lastConeDepth), 0.0f, false, false,
+                cone = LightCone(litT, 0.0f, 0u, 0u, 0u, 0.0f, 0.0f, exp(-lastConeDepth), 0.0f, false, false,
                                  false);
             }
             else
-                cone = beginLightCone(litPoint, t, coneTail);
+                cone = beginLightCone(dir, litT, t, coneTail);
             state = MARCH_CONE;
         }
         else
@@ -407,13 +416,14 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
         if (!lightConeDone(cone))
             continue;
         if (cone.tailMarched)
-            coneTail = ConeTail(cone.origin, cone.tailDepth, true);
+            coneTail = ConeTail(cone.originT, cone.tailDepth, true);
         float lightDepth = lightConeOpticalDepth(cone);
         if (cone.live > 0u)
         {
-            lastConeOrigin = cone.origin;
+            lastConeT = cone.originT;
             lastConeDepth = lightDepth;
         }
+        float cosTheta = dot(dir, keyLightDirection());
         vec3 source = litSigmaS * (lightAtCloud * multipleScattering(lightDepth, cosTheta, litSigmaS * 100.0f) +
                                    ambientLight(litHeightFraction));
         radiance += transmittance * integrateScattering(source, litSigmaE, litStepM);
