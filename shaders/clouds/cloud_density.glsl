@@ -107,7 +107,9 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
     vec3 noiseRel = toNoiseFrame(p);
     vec3 radial = normalize(p + vec3(0.0f, 0.0f, frame.earth.y));  // local vertical at p
     float best = 0.0f;
-    for (int k = 0; k <= MAX_CLOUD_LAYERS; ++k)
+    // Not unrolled: on the H200 the rolled loop made the 1/16 march 1-3 % faster (BENCHMARKS.md, tenth
+    // session); the including passes enable GL_EXT_control_flow_attributes.
+    [[dont_unroll]] for (int k = 0; k <= MAX_CLOUD_LAYERS; ++k)
     {
         vec4 range = frame.layerRangeM[k];
         if (h < range.x || h > range.y)
