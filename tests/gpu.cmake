@@ -21,3 +21,8 @@ gtest_discover_tests(test_aerial_lut TEST_PREFIX "gpu." DISCOVERY_TIMEOUT 60 PRO
 add_executable(test_light_volume gpu/test_light_volume.cpp gpu/test_cone_tail.cpp gpu/scenes.cpp gpu/image_compare.cpp)
 target_link_libraries(test_light_volume PRIVATE sky_renderer GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_light_volume TEST_PREFIX "gpu." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+
+# The frame path (issue 20): compositing layers, frames in flight, readback of only what was asked for.
+add_executable(test_frame_path gpu/test_frame_path.cpp gpu/scenes.cpp)
+target_link_libraries(test_frame_path PRIVATE sky_renderer GTest::gtest_main sky_warnings)
+gtest_discover_tests(test_frame_path TEST_PREFIX "gpu." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)

@@ -29,6 +29,11 @@ layout(binding = 8, rgba16ui) uniform readonly uimage2D historyIn;  // 1x1 stand
 // The linear frame only when a caller reads it (FRAME_FLAG_NO_LINEAR_OUTPUT clear): 16.6 MB at 1080p.
 layout(binding = 9, rgba16f) uniform writeonly image2D linearOut;
 layout(binding = 10, rgba8) uniform writeonly image2D displayOut;
+// Compositing layers and the reprojected frame's cloud image, each only when asked for (FRAME_FLAG_*).
+layout(binding = 11, rgba16f) uniform writeonly image2D skyOut;
+layout(binding = 12, rgba16f) uniform writeonly image2D cloudLayerOut;
+layout(binding = 13, rgba16f) uniform writeonly image2D cloudOut;
+layout(binding = 14, r32f) uniform writeonly image2D depthOut;
 
 #include "shaders/lib/atmosphere_sampling.glsl"
 #include "shaders/clouds/view_ray.glsl"
@@ -80,6 +85,8 @@ void main()
     else
         cloud = unpackCloudHistory(imageLoad(historyIn, pixel), depth);
     vec3 color = sky;
+    // The clouds as the eye sees them through the air in front of them, premultiplied by their alpha.
+    vec3 cloudSeen = vec3(0.0f);
     if (cloud.a > 0.0f)
     {
         vec3 inscatter;
@@ -87,6 +94,16 @@ void main()
         sampleAerialLut(aerialInscatterLut, aerialTransmittanceLut, atmosphere, zenithRad, azimuthRad, rc, depth,
                         inscatter, transmittance);
         color = sky * (1.0f - cloud.a) + cloud.rgb * transmittance + inscatter * cloud.a;
+        cloudSeen = cloud.rgb * transmittance + inscatter * cloud.a;
+    }
+    if ((frame.image.w & FRAME_FLAG_SKY_LAYER) != 0u)
+        imageStore(skyOut, pixel, vec4(sky, 1.0f));
+    if ((frame.image.w & FRAME_FLAG_CLOUD_LAYER) != 0u)
+        imageStore(cloudLayerOut, pixel, vec4(cloudSeen, cloud.a));
+    if ((frame.image.w & FRAME_FLAG_WRITE_CLOUD) != 0u)
+    {
+        imageStore(cloudOut, pixel, cloud);
+        imageStore(depthOut, pixel, vec4(depth));
     }
     if ((frame.image.w & FRAME_FLAG_NO_LINEAR_OUTPUT) == 0u)
         imageStore(linearOut, pixel, vec4(color, 1.0f));

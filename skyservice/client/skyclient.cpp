@@ -421,10 +421,22 @@ SkyResult sky_client_subscribe_files(SkyClient* client, const char* dir, uint32_
 
 SkyResult sky_client_subscribe_shm(SkyClient* client)
 {
+    return sky_client_subscribe_shm_layers(client, 1u << SKY_LAYER_DISPLAY);
+}
+
+SkyResult sky_client_subscribe_shm_layers(SkyClient* client, uint32_t layers)
+{
     if (!client)
         return SKY_ERR_ARGUMENT;
+    if (layers == 0 || layers >= (1u << SKY_LAYER_COUNT))
+        return fail(client, SKY_ERR_ARGUMENT, "layers must be a non-empty set of (1u << SKY_LAYER_*)");
+    json names = json::array();
+    const char* known[SKY_LAYER_COUNT] = {"display", "sky", "clouds", "depth"};
+    for (uint32_t k = 0; k < SKY_LAYER_COUNT; ++k)
+        if (layers & (1u << k))
+            names.push_back(known[k]);
     json reply;
-    SkyResult r = request(client, {{"type", "subscribe"}, {"transport", "shm"}}, reply);
+    SkyResult r = request(client, {{"type", "subscribe"}, {"transport", "shm"}, {"layers", names}}, reply);
     if (r != SKY_OK || (r = expectType(client, reply, "subscribed")) != SKY_OK)
         return r;
     return mapRing(client, reply);
@@ -489,6 +501,12 @@ SkyResult sky_client_acquire_frame(SkyClient* client, SkyFrame* out_frame)
         f.shadow = s.shadow;
         f.shadow_size = v.shadow ? s.shadow.size_texels : 0;
         f.shadow_transmittance = v.shadow;
+        for (uint32_t k = 0; k < SKY_LAYER_COUNT; ++k)
+        {
+            f.layers[k].pixels = v.layers[k];
+            f.layers[k].format = v.layers[k] ? s.layers[k].format : 0u;
+            f.layers[k].row_bytes = v.layers[k] ? s.layers[k].row_bytes : 0u;
+        }
         f.slot = v.slotIndex;
         f.sequence = v.sequence;
         if (!client->ring.stillValid(v))

@@ -54,6 +54,14 @@ typedef struct SkyClient SkyClient;
 /* The view to render. Same names and units as the socket API's "view" object. */
 typedef SkyShmView SkyView;
 
+/* One compositing layer of a frame (SKY_LAYER_*, shm_layout.h says what each holds). */
+typedef struct SkyFrameLayer
+{
+    uint32_t format;          /* SKY_FORMAT_*; 0 = not in this frame (pixels null) */
+    uint32_t row_bytes;
+    const uint8_t* pixels;    /* width x height pixels of the frame, top row first */
+} SkyFrameLayer;
+
 /* A frame held by the client. Pointers stay valid until release (or close); the data may be torn
  * if the client holds it longer than (slot_count - 1) frame intervals: release says so. */
 typedef struct SkyFrame
@@ -68,6 +76,7 @@ typedef struct SkyFrame
     uint32_t shadow_size;              /* 0 = no shadow map in this frame */
     const float* shadow_transmittance; /* shadow_size^2 floats, north row first */
     SkyShmShadowGeoRef shadow;
+    SkyFrameLayer layers[SKY_LAYER_COUNT]; /* [SKY_LAYER_DISPLAY] is `pixels`; the others when subscribed */
     uint32_t slot;                     /* for release: which slot, and its sequence at acquire */
     uint64_t sequence;
 } SkyFrame;
@@ -102,6 +111,10 @@ SkyResult sky_client_subscribe_files(SkyClient* client, const char* dir, uint32_
 
 /* Shared-memory transport: maps the ring. Call once; after a service restart, reconnect. */
 SkyResult sky_client_subscribe_shm(SkyClient* client);
+/* The same, asking for compositing layers as well: `layers` is a bit set of (1u << SKY_LAYER_*) (the
+ * display layer is always published). Frames carry the union of what the service's subscribers ask for;
+ * a layer costs GPU and copy time only while someone asks for it. May be called again to add layers. */
+SkyResult sky_client_subscribe_shm_layers(SkyClient* client, uint32_t layers);
 /* Waits until a frame newer than after_frame_id is published (timeout_ms < 0: forever). */
 SkyResult sky_client_wait_frame(SkyClient* client, uint64_t after_frame_id, int timeout_ms);
 /* The newest complete frame, without copying. SKY_ERR_NO_FRAME before the first. */

@@ -45,6 +45,20 @@ std::string shownValue(const json& v)
     return s.size() > 40 ? s.substr(0, 37) + "..." : s;
 }
 
+}  // namespace
+
+uint32_t layerBit(const std::string& name)
+{
+    const char* names[SKY_LAYER_COUNT] = {"display", "sky", "clouds", "depth"};
+    for (uint32_t k = 0; k < SKY_LAYER_COUNT; ++k)
+        if (name == names[k])
+            return 1u << k;
+    return 0;
+}
+
+namespace
+{
+
 struct Checker
 {
     ProtocolError& error;
@@ -220,6 +234,23 @@ bool parseFields(const json& j, const ProtocolLimits& limits, Request& out, Chec
         else
             return check.fail("out_of_range", "transport",
                               "transport '" + transport + "' is not one of shm, vulkan, files");
+        if (out.transport == Transport::Shm && j.contains("layers"))
+        {
+            if (!j["layers"].is_array() || j["layers"].empty() || j["layers"].size() > SKY_LAYER_COUNT)
+                return check.fail("bad_type", "layers", "layers must be an array of 1 to 4 of display, sky, clouds, depth");
+            out.layers = 0;
+            for (const json& layer : j["layers"])
+            {
+                std::string name;
+                if (!check.string(layer, "layers", name))
+                    return false;
+                const uint32_t bit = layerBit(name);
+                if (bit == 0)
+                    return check.fail("out_of_range", "layers",
+                                      "layer '" + name + "' is not one of display, sky, clouds, depth");
+                out.layers |= bit;
+            }
+        }
         if (out.transport != Transport::Files)
             return true;
         if (!check.required(j, "dir") || !check.string(j["dir"], "dir", out.path))

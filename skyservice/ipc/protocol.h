@@ -3,6 +3,8 @@
 // request line, and writing reply lines. Pure functions, no sockets, no service state.
 #pragma once
 
+#include "skyservice/ipc/shm_layout.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
@@ -58,9 +60,13 @@ struct Request
     std::string path;
     // subscribe
     Transport transport = Transport::Shm;
+    uint32_t layers = 1u << SKY_LAYER_DISPLAY;  ///< shm: the layers asked for, bit k = SKY_LAYER_k (shm_layout.h)
     uint32_t every = 1;
     std::string fileFormat = "png";  ///< png | exr | both
 };
+
+/// The bit of a layer's name ("display", "sky", "clouds", "depth": 1 << SKY_LAYER_*), 0 for another name.
+uint32_t layerBit(const std::string& name);
 
 /// What was wrong with a request (PROTOCOL.md "Errors").
 struct ProtocolError

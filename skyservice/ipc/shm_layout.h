@@ -8,8 +8,11 @@
  *   offset 0                       SkyShmHeader
  *   header.slots_offset + i*stride SkyShmSlot i (i < slot_count), each followed in its stride by
  *     slot.image_offset            the frame: width*height pixels, row_bytes per row, top row first
+ *     slot.layers[k].offset        the compositing layers a subscriber asked for (SKY_LAYER_*)
  *     slot.shadow_offset           the shadow map: shadow_size^2 float32 key-light transmittance,
  *                                  north row first, west column first (0 = opaque, 1 = clear)
+ * Every slot has room for every layer at the ring's largest size; pages of layers never written are
+ * never touched, so they cost no memory.
  *
  * Concurrency: one writer (the service), any number of readers, nobody ever blocks. Each slot has a
  * sequence lock: the writer makes `sequence` odd, writes the slot, makes it even again (release
@@ -30,11 +33,29 @@ extern "C" {
 #endif
 
 #define SKY_SHM_MAGIC 0x31304D5246594B53ull /* "SKYFRM01" read as little-endian bytes */
-#define SKY_SHM_VERSION 1u
+#define SKY_SHM_VERSION 2u
 
 /* Pixel formats of SkyShmSlot.format. */
 #define SKY_FORMAT_RGBA8_SRGB 1u      /* tone-mapped display frame, 4 bytes per pixel, alpha 255 */
 #define SKY_FORMAT_RGBA16F_LINEAR 2u  /* linear radiance (pre-exposed), half floats, 8 bytes per pixel */
+#define SKY_FORMAT_RGBA16F_PREMULTIPLIED 3u /* premultiplied linear radiance (pre-exposed) + alpha, half floats */
+#define SKY_FORMAT_R32F_METRES 4u     /* one float32 per pixel, metres */
+
+/* The layers of a frame (SkyShmSlot.layers[i]), each present when some subscriber asked for it:
+ *   DISPLAY  SKY_FORMAT_RGBA8_SRGB: the finished picture (tone-mapped, sRGB, alpha 255), as before layers.
+ *   SKY      SKY_FORMAT_RGBA16F_LINEAR: the sky alone (atmosphere, sun and moon disks), no clouds, alpha 1.
+ *   CLOUDS   SKY_FORMAT_RGBA16F_PREMULTIPLIED: the clouds as the eye sees them through the air in front of
+ *            them (aerial perspective applied), premultiplied; alpha = 1 - cloud transmittance. Over the
+ *            sky layer: linear = sky * (1 - a) + clouds.rgb.
+ *   DEPTH    SKY_FORMAT_R32F_METRES: the transmittance-weighted distance of the cloud along the pixel's ray
+ *            (metres from the eye), 0 where alpha is 0. An object at distance d is in front of the cloud
+ *            where d < depth.
+ * Linear values are pre-exposed: divide by SkyShmSlot.exposure for W m^-2 sr^-1 nm^-1. */
+#define SKY_LAYER_DISPLAY 0u
+#define SKY_LAYER_SKY 1u
+#define SKY_LAYER_CLOUDS 2u
+#define SKY_LAYER_DEPTH 3u
+#define SKY_LAYER_COUNT 4u
 
 /* The view a frame was rendered for. Names and units as in DESIGN §5 (CLI, socket API, sidecar JSON). */
 typedef struct SkyShmView
@@ -86,6 +107,15 @@ typedef struct SkyShmHeader
     uint64_t reserved[8];
 } SkyShmHeader;
 
+/* One layer of a slot: width x height pixels (SkyShmSlot.view), row_bytes per row, top row first. */
+typedef struct SkyShmLayer
+{
+    uint32_t format;           /* SKY_FORMAT_*; 0 = not in this frame (bytes 0) */
+    uint32_t row_bytes;
+    uint64_t offset;           /* from the start of the slot */
+    uint64_t bytes;
+} SkyShmLayer;
+
 typedef struct SkyShmSlot
 {
     uint64_t sequence;         /* ATOMIC: the sequence lock; odd while the writer is in the slot */
@@ -100,6 +130,7 @@ typedef struct SkyShmSlot
     uint64_t shadow_offset;    /* from the start of this slot; shadow.size_texels^2 floats */
     uint64_t shadow_bytes;     /* 0 when the frame has no shadow map */
     SkyShmShadowGeoRef shadow;
+    SkyShmLayer layers[SKY_LAYER_COUNT]; /* layers[SKY_LAYER_DISPLAY] repeats format/row_bytes/image_* */
     uint64_t reserved[4];
 } SkyShmSlot;
 

@@ -30,7 +30,10 @@ static_assert(offsetof(SkyShmHeader, latest_frame_id) == 64);
 static_assert(offsetof(SkyShmHeader, latest_slot) == 72);
 static_assert(offsetof(SkyShmHeader, writer_heartbeat_ns) == 80);
 static_assert(offsetof(SkyShmHeader, reserved) == 88);
-static_assert(sizeof(SkyShmSlot) == 4 * 8 + sizeof(SkyShmView) + 2 * 4 + 4 * 8 + sizeof(SkyShmShadowGeoRef) + 4 * 8);
+static_assert(sizeof(SkyShmLayer) == 24 && offsetof(SkyShmLayer, offset) == 8);
+static_assert(sizeof(SkyShmSlot) ==
+              4 * 8 + sizeof(SkyShmView) + 2 * 4 + 4 * 8 + sizeof(SkyShmShadowGeoRef) + 4 * 24 + 4 * 8);
+static_assert(offsetof(SkyShmSlot, layers) == 72 + sizeof(SkyShmView) + sizeof(SkyShmShadowGeoRef));
 static_assert(offsetof(SkyShmSlot, sequence) == 0);
 static_assert(offsetof(SkyShmSlot, view) == 32);
 static_assert(offsetof(SkyShmSlot, format) == 32 + sizeof(SkyShmView));
@@ -56,6 +59,8 @@ uint32_t bytesPerPixel(uint32_t format)
     {
     case SKY_FORMAT_RGBA8_SRGB: return 4;
     case SKY_FORMAT_RGBA16F_LINEAR: return 8;
+    case SKY_FORMAT_RGBA16F_PREMULTIPLIED: return 8;
+    case SKY_FORMAT_R32F_METRES: return 4;
     default: return 0;
     }
 }
@@ -65,10 +70,15 @@ std::string errnoText(const char* what, const std::string& name)
     return std::string(what) + " " + name + ": " + std::strerror(errno);
 }
 
+/// The format of each compositing layer (shm_layout.h); [SKY_LAYER_DISPLAY] is the ring's own format.
+constexpr uint32_t kLayerFormat[SKY_LAYER_COUNT] = {0, SKY_FORMAT_RGBA16F_LINEAR, SKY_FORMAT_RGBA16F_PREMULTIPLIED,
+                                                    SKY_FORMAT_R32F_METRES};
+
 /// Where things lie in one slot's stride.
 struct SlotLayout
 {
     uint64_t imageOffset, imageCapacity, shadowOffset, shadowCapacity, stride;
+    uint64_t layerOffset[SKY_LAYER_COUNT], layerCapacity[SKY_LAYER_COUNT];
 };
 
 SlotLayout slotLayout(const ShmRingConfig& c)
@@ -76,7 +86,16 @@ SlotLayout slotLayout(const ShmRingConfig& c)
     SlotLayout l{};
     l.imageOffset = alignUp(sizeof(SkyShmSlot), kPageBytes);
     l.imageCapacity = uint64_t(c.maxWidth) * c.maxHeight * c.bytesPerPixel;
-    l.shadowOffset = l.imageOffset + alignUp(l.imageCapacity, kPageBytes);
+    uint64_t end = l.imageOffset + alignUp(l.imageCapacity, kPageBytes);
+    l.layerOffset[SKY_LAYER_DISPLAY] = l.imageOffset;
+    l.layerCapacity[SKY_LAYER_DISPLAY] = l.imageCapacity;
+    for (uint32_t k = 1; k < SKY_LAYER_COUNT; ++k)
+    {
+        l.layerOffset[k] = end;
+        l.layerCapacity[k] = uint64_t(c.maxWidth) * c.maxHeight * bytesPerPixel(kLayerFormat[k]);
+        end += alignUp(l.layerCapacity[k], kPageBytes);
+    }
+    l.shadowOffset = end;
     l.shadowCapacity = uint64_t(c.maxShadowSize) * c.maxShadowSize * sizeof(float);
     l.stride = l.shadowOffset + alignUp(l.shadowCapacity, kPageBytes);
     return l;
@@ -137,11 +156,6 @@ uint64_t monotonicNs()
     timespec ts{};
     ::clock_gettime(CLOCK_MONOTONIC, &ts);
     return uint64_t(ts.tv_sec) * 1000000000ull + uint64_t(ts.tv_nsec);
-}
-
-SkyShmSlot* slotAt(SkyShmHeader* h, uint32_t index)
-{
-    return reinterpret_cast<SkyShmSlot*>(reinterpret_cast<uint8_t*>(h) + h->slots_offset + index * h->slot_stride);
 }
 
 const SkyShmSlot* slotAt(const SkyShmHeader* h, uint64_t index)
@@ -216,6 +230,8 @@ bool ShmRingWriter::create(const ShmRingConfig& config, std::string& error)
     config_ = config;
     totalBytes_ = total;
     header_ = static_cast<SkyShmHeader*>(p);
+    slotsOffset_ = slotsOffset;
+    slotStride_ = layout.stride;
     // ftruncate zero-filled the object: every slot's sequence is 0 (even, never written), no frame yet.
     SkyShmHeader& h = *header_;
     h.version = SKY_SHM_VERSION;
@@ -231,7 +247,7 @@ bool ShmRingWriter::create(const ShmRingConfig& config, std::string& error)
     h.writer_pid = uint32_t(::getpid());
     for (uint32_t i = 0; i < config.slotCount; ++i)
     {
-        SkyShmSlot* s = slotAt(header_, i);
+        SkyShmSlot* s = slot(i);
         s->image_offset = layout.imageOffset;
         s->shadow_offset = layout.shadowOffset;
     }
@@ -263,7 +279,7 @@ uint32_t ShmRingWriter::beginSlot()
     const uint64_t latestId = __atomic_load_n(&header_->latest_frame_id, __ATOMIC_RELAXED);
     const uint64_t latest = __atomic_load_n(&header_->latest_slot, __ATOMIC_RELAXED);
     const uint32_t index = latestId == 0 ? 0u : uint32_t((latest + 1) % config_.slotCount);
-    SkyShmSlot* s = slotAt(header_, index);
+    SkyShmSlot* s = slot(index);
     const uint64_t seq = __atomic_load_n(&s->sequence, __ATOMIC_RELAXED);
     __atomic_store_n(&s->sequence, seq | 1u, __ATOMIC_RELAXED);
     // The odd sequence must be visible before any byte of the slot changes.
@@ -281,7 +297,7 @@ bool ShmRingWriter::endSlot(const ShmFrame& frame, std::string& error)
     }
     const uint32_t index = openSlot_;
     openSlot_ = UINT32_MAX;
-    SkyShmSlot* s = slotAt(header_, index);
+    SkyShmSlot* s = slot(index);
     const uint64_t seq = __atomic_load_n(&s->sequence, __ATOMIC_RELAXED);
     const SlotLayout layout = slotLayout(config_);
     const uint32_t bpp = bytesPerPixel(frame.format);
@@ -302,6 +318,8 @@ bool ShmRingWriter::endSlot(const ShmFrame& frame, std::string& error)
     else if (shadowSize > config_.maxShadowSize)
         why = "shadow map of " + std::to_string(shadowSize) + " texels exceeds the ring's " +
                 std::to_string(config_.maxShadowSize);
+    else if (frame.layers[SKY_LAYER_DISPLAY] != nullptr)
+        why = "the display layer is ShmFrame::pixels, not layers[SKY_LAYER_DISPLAY]";
     if (!why.empty())
     {
         __atomic_store_n(&s->sequence, (seq | 1u) + 1u, __ATOMIC_RELEASE);  // even again, not published
@@ -324,6 +342,16 @@ bool ShmRingWriter::endSlot(const ShmFrame& frame, std::string& error)
     s->shadow = frame.shadow;
     s->shadow.size_texels = shadowSize;
     uint8_t* base = reinterpret_cast<uint8_t*>(s);
+    s->layers[SKY_LAYER_DISPLAY] = SkyShmLayer{frame.pixels ? frame.format : 0u, uint32_t(tightRow),
+                                               layout.imageOffset, imageBytes};
+    for (uint32_t k = 1; k < SKY_LAYER_COUNT; ++k)
+    {
+        const uint64_t row = uint64_t(frame.width) * bytesPerPixel(kLayerFormat[k]);
+        const uint64_t bytes = frame.layers[k] ? row * frame.height : 0;  // <= capacity: the size was checked
+        s->layers[k] = SkyShmLayer{bytes ? kLayerFormat[k] : 0u, uint32_t(row), layout.layerOffset[k], bytes};
+        if (bytes)
+            std::memcpy(base + layout.layerOffset[k], frame.layers[k], bytes);
+    }
     if (frame.pixels)
     {
         const uint64_t sourceRow = frame.rowBytes != 0 ? frame.rowBytes : tightRow;
@@ -443,6 +471,15 @@ bool ShmRingReader::acquire(ShmFrameView& out) const
     out.sequence = seq;
     out.pixels = imageBytes ? base + imageOffset : nullptr;
     out.shadow = shadowBytes ? reinterpret_cast<const float*>(base + shadowOffset) : nullptr;
+    for (uint32_t k = 0; k < SKY_LAYER_COUNT; ++k)
+    {
+        const SkyShmLayer layer = s->layers[k];
+        const uint32_t bpp = bytesPerPixel(layer.format);
+        const bool fits = layer.offset <= stride && layer.bytes <= stride - layer.offset && bpp != 0 &&
+                          uint64_t(layer.row_bytes) >= uint64_t(s->view.width) * bpp &&
+                          uint64_t(layer.row_bytes) * s->view.height <= layer.bytes;
+        out.layers[k] = layer.bytes && fits ? base + layer.offset : nullptr;
+    }
     return true;
 }
 

@@ -33,6 +33,9 @@ struct ShmFrame
     uint32_t format = SKY_FORMAT_RGBA8_SRGB;
     uint32_t width = 0, height = 0, rowBytes = 0;
     const void* pixels = nullptr;
+    /// The compositing layers (index SKY_LAYER_SKY...; [SKY_LAYER_DISPLAY] is unused: `pixels`), tightly
+    /// packed rows in the layer's format (shm_layout.h); null: not in this frame.
+    const void* layers[SKY_LAYER_COUNT] = {};
     const float* shadowTransmittance = nullptr;  ///< null: no shadow map
     SkyShmShadowGeoRef shadow{};                 ///< shadow.size_texels texels per side
 };
@@ -70,6 +73,13 @@ public:
 private:
     ShmRingConfig config_;
     SkyShmHeader* header_ = nullptr;
+    // The writer's own copy of the geometry: what lies in the mapping may be scribbled by any process
+    // that can open it, so the writer never reads an address back from it.
+    uint64_t slotsOffset_ = 0, slotStride_ = 0;
+    SkyShmSlot* slot(uint32_t index) const
+    {
+        return reinterpret_cast<SkyShmSlot*>(reinterpret_cast<uint8_t*>(header_) + slotsOffset_ + index * slotStride_);
+    }
     uint64_t totalBytes_ = 0;
     uint32_t openSlot_ = UINT32_MAX;
 };
@@ -82,6 +92,7 @@ struct ShmFrameView
     uint64_t sequence = 0;
     const uint8_t* pixels = nullptr;
     const float* shadow = nullptr;
+    const uint8_t* layers[SKY_LAYER_COUNT] = {};  ///< null where the layer is not in the frame
 };
 
 /// The client's side: maps the ring read-only and checks its header.

@@ -68,9 +68,6 @@ SkyStatus createAtmosphereResources(Renderer& r)
     d.depth = AERIAL_LUT_SLICES;
     SKY_TRY(createImage(r.ctx, r.memory, r.aerialInscatterLut, d, "aerial-perspective LUT (in-scattering)"));
     SKY_TRY(createImage(r.ctx, r.memory, r.aerialTransmittanceLut, d, "aerial-perspective LUT (transmittance)"));
-    SKY_TRY(createBuffer(r.ctx, r.memory, r.atmosphereUniforms, sizeof(AtmosphereParams),
-                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::HostVisible,
-                         "atmosphere uniforms"));
     OneShot shot;
     SKY_TRY(beginOneShot(r.ctx, shot));
     for (Image* img : {&r.transmittanceLut, &r.multiscatterLut, &r.skyViewLut, &r.aerialInscatterLut,
@@ -153,15 +150,15 @@ void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camer
 {
     const double R = atmosphereGroundRadiusM(camera);
     AtmosphereParams p = frameAtmosphere(R, sunMoon);
-    std::memcpy(r.atmosphereUniforms.mapped, &p, sizeof p);
+    std::memcpy(recording(r).atmosphereUniforms.mapped, &p, sizeof p);
     const bool rebuild = r.atmosphereRadiusM != R;
     if (rebuild)
     {
         dispatch(r.ctx, cmd, r.transmittanceProgram, TRANSMITTANCE_LUT_WIDTH, TRANSMITTANCE_LUT_HEIGHT, 1, nullptr, 0,
-                 {DescriptorInfo(r.atmosphereUniforms), DescriptorInfo(r.transmittanceLut)});
+                 {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(r.transmittanceLut)});
         computeBarrier(cmd);
         dispatch(r.ctx, cmd, r.multiscatterProgram, MULTISCATTER_LUT_SIZE, MULTISCATTER_LUT_SIZE, 1, nullptr, 0,
-                 {DescriptorInfo(r.atmosphereUniforms), DescriptorInfo(r.multiscatterLut),
+                 {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(r.multiscatterLut),
                   DescriptorInfo(r.transmittanceLut, r.linearClamp)});
         computeBarrier(cmd);
         r.atmosphereRadiusM = R;
@@ -184,23 +181,23 @@ void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camer
     r.skyViewAtmosphere = p;
     r.skyViewInputsValid = true;
     dispatch(r.ctx, cmd, r.skyViewProgram, SKY_VIEW_LUT_WIDTH, SKY_VIEW_LUT_HEIGHT, 1, c,
-             {DescriptorInfo(r.atmosphereUniforms), DescriptorInfo(r.skyViewLut),
+             {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(r.skyViewLut),
               DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.multiscatterLut, r.linearClamp)});
     dispatch(r.ctx, cmd, r.aerialPerspectiveProgram, AERIAL_LUT_WIDTH, AERIAL_LUT_HEIGHT, 1, c,
-             {DescriptorInfo(r.atmosphereUniforms), DescriptorInfo(r.aerialInscatterLut),
+             {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(r.aerialInscatterLut),
               DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.multiscatterLut, r.linearClamp),
               DescriptorInfo(r.aerialTransmittanceLut)});
 }
 
-void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request, const Image& cloud,
-                     const Image& depth, const Image& history, const Image& linear)
+void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request, const CompositeImages& images)
 {
     dispatch(r.ctx, cmd, r.compositeProgram, request.width, request.height, 1, nullptr, 0,
-             {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.atmosphereUniforms),
+             {DescriptorInfo(recording(r).frameUniforms), DescriptorInfo(recording(r).atmosphereUniforms),
               DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.skyViewLut, r.linearRepeat),
               DescriptorInfo(r.aerialInscatterLut, r.linearRepeat), DescriptorInfo(r.aerialTransmittanceLut, r.linearRepeat),
-              DescriptorInfo(cloud), DescriptorInfo(depth), DescriptorInfo(history), DescriptorInfo(linear),
-              DescriptorInfo(r.displayImage)});
+              DescriptorInfo(*images.cloud), DescriptorInfo(*images.depth), DescriptorInfo(*images.history),
+              DescriptorInfo(*images.linear), DescriptorInfo(r.displayImage), DescriptorInfo(*images.sky),
+              DescriptorInfo(*images.cloudLayer), DescriptorInfo(*images.cloudOut), DescriptorInfo(*images.depthOut)});
 }
 
 }  // namespace sky

@@ -18,7 +18,7 @@ struct LightingEstimate
     double exposure = 1.0;                ///< multiplier before tone mapping
 };
 
-/// Creates the LUT images and the atmosphere uniform buffer.
+/// Creates the LUT images.
 SkyStatus createAtmosphereResources(Renderer& r);
 
 /// CPU estimate of the lighting for this frame (double precision, a few hundred atmosphere samples).
@@ -30,11 +30,21 @@ LightingEstimate estimateLighting(Renderer& r, const CameraFrame& camera, const 
 void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camera, const SunMoon& sunMoon,
                       const FrameInputs& in);
 
-/// Records the composite pass (sky + clouds + aerial perspective -> linear and display images).
-/// `cloud`, `depth`: the march's images (block resolution in reprojected frames); `history`: the packed
-/// history of the pixels not marched (a 1x1 stand-in in full-resolution frames); `linear`: the linear
-/// frame, or a 1x1 stand-in the shader does not write (FRAME_FLAG_NO_LINEAR_OUTPUT).
-void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request, const Image& cloud,
-                     const Image& depth, const Image& history, const Image& linear);
+/// The images the composite reads and writes. Each optional output is the frame's image while a reader
+/// asks for it (its FRAME_FLAG_* set), else a 1x1 stand-in the shader does not write.
+struct CompositeImages
+{
+    const Image* cloud = nullptr;    ///< the march's cloud image (block resolution in reprojected frames)
+    const Image* depth = nullptr;    ///< ... and its depth
+    const Image* history = nullptr;  ///< the packed history of the pixels not marched (stand-in: full frames)
+    const Image* linear = nullptr;   ///< linear frame (FRAME_FLAG_NO_LINEAR_OUTPUT clear)
+    const Image* sky = nullptr;      ///< FRAME_FLAG_SKY_LAYER
+    const Image* cloudLayer = nullptr;  ///< FRAME_FLAG_CLOUD_LAYER
+    const Image* cloudOut = nullptr;    ///< FRAME_FLAG_WRITE_CLOUD: the full-resolution cloud image...
+    const Image* depthOut = nullptr;    ///< ... and depth of a reprojected frame
+};
+
+/// Records the composite pass (sky + clouds + aerial perspective -> display image and the outputs asked for).
+void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request, const CompositeImages& images);
 
 }  // namespace sky

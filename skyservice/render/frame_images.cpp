@@ -33,45 +33,66 @@ SkyStatus toGeneral(Renderer& r, const std::vector<Image*>& made)
 
 }  // namespace
 
-SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height, bool cloudImages, bool linear)
+SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height, const FrameOutputs& outputs,
+                             bool reprojected)
 {
+    const bool cloudImages = !reprojected || outputs.cloud || outputs.depth;
     const bool frameOk = hasSize(r.displayImage, width, height);
     const bool cloudOk = !cloudImages || hasSize(r.cloudImage, width, height);
-    const bool linearOk = linear ? hasSize(r.linearImage, width, height) : !r.linearImage.image;
-    if (frameOk && cloudOk && linearOk)
-        return SkyStatus::success();
-    // Resize, first full frame, or linear output switched: never in steady state.
-    VK_TRY(vkQueueWaitIdle(r.ctx.queue));
+    if (!frameOk || !cloudOk)
+    {
+        // Resize or the first frame: never in steady state. Everything of the old size goes.
+        VK_TRY(vkQueueWaitIdle(r.ctx.queue));
+        for (Image* img : {&r.displayImage, &r.linearImage, &r.skyImage, &r.cloudLayerImage})
+            destroyImage(r.ctx, r.memory, *img);
+        if (!frameOk || cloudImages)  // a resize drops cloud images of the old size
+        {
+            destroyImage(r.ctx, r.memory, r.cloudImage);
+            destroyImage(r.ctx, r.memory, r.depthImage);
+        }
+    }
     std::vector<Image*> made;
     ImageDesc d;
     d.width = width;
     d.height = height;
     d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-    if (!frameOk)
-    {
-        d.format = VK_FORMAT_R8G8B8A8_UNORM;
-        SKY_TRY(remake(r, r.displayImage, d, "display frame", made));
-    }
-    if (!linearOk || !frameOk)
-    {
-        destroyImage(r.ctx, r.memory, r.linearImage);
-        d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-        if (linear)
-            SKY_TRY(remake(r, r.linearImage, d, "linear frame", made));
-    }
-    if (!frameOk || !cloudOk)  // a resize drops cloud images of the old size
-    {
-        destroyImage(r.ctx, r.memory, r.cloudImage);
-        destroyImage(r.ctx, r.memory, r.depthImage);
-        if (cloudImages)
+    // Made when a frame first asks for them; an optional image no frame asks for any more goes once the
+    // frames in flight that used it are done (the deletion queue), without a wait.
+    auto optional = [&](Image& img, bool wanted, VkFormat format, const char* name) -> SkyStatus {
+        if (wanted && !img.image)
         {
-            d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-            SKY_TRY(remake(r, r.cloudImage, d, "cloud radiance", made));
-            d.format = VK_FORMAT_R32_SFLOAT;
-            SKY_TRY(remake(r, r.depthImage, d, "cloud depth", made));
+            d.format = format;
+            return remake(r, img, d, name, made);
         }
+        if (!wanted && img.image)
+            deferDestroy(r, img);
+        return SkyStatus::success();
+    };
+    SKY_TRY(optional(r.displayImage, true, VK_FORMAT_R8G8B8A8_UNORM, "display frame"));
+    SKY_TRY(optional(r.linearImage, outputs.linearImage, VK_FORMAT_R16G16B16A16_SFLOAT, "linear frame"));
+    SKY_TRY(optional(r.skyImage, outputs.sky, VK_FORMAT_R16G16B16A16_SFLOAT, "sky layer"));
+    SKY_TRY(optional(r.cloudLayerImage, outputs.cloudLayer, VK_FORMAT_R16G16B16A16_SFLOAT, "cloud layer"));
+    if (cloudImages && !r.cloudImage.image)  // a renderer that made full frames keeps their cloud images
+    {
+        SKY_TRY(optional(r.cloudImage, true, VK_FORMAT_R16G16B16A16_SFLOAT, "cloud radiance"));
+        SKY_TRY(optional(r.depthImage, true, VK_FORMAT_R32_SFLOAT, "cloud depth"));
     }
     return toGeneral(r, made);
+}
+
+void deferDestroy(Renderer& r, Image& image)
+{
+    // The newest frame submitted is the last that can use it; its context's fence is waited for before
+    // the context is used again, which is after every older frame too.
+    FrameContext& newest = recording(r);
+    if (!newest.submitted)  // collected: frames are collected in order, so none is in flight
+    {
+        destroyImage(r.ctx, r.memory, image);
+        return;
+    }
+    Image doomed = image;
+    image = Image{};
+    newest.deletions.push_back([&r, doomed]() mutable { destroyImage(r.ctx, r.memory, doomed); });
 }
 
 SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height, uint32_t blockPx)

@@ -2,17 +2,23 @@
 // The frame-size images of a renderer: made on the first frame of a size, resized with the request.
 #pragma once
 
+#include "skyservice/render/frame_recording.h"
 #include "skyservice/render/renderer.h"
 
 namespace sky
 {
 
-// The full-resolution images of a frame: display always; linear only while frames ask for it (`linear`:
-// made when asked for, destroyed at the first frame that does not ask); the cloud radiance and depth
-// only for full-resolution frames (`cloudImages`): a reprojected frame's cloud image is its fresh
-// pixels and the packed history the reconstruct pass writes, which the composite and the readback
-// take directly. A renderer that has made full frames keeps their cloud images.
-SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height, bool cloudImages, bool linear);
+// The full-resolution images of a frame: display always; linear, the sky layer and the cloud layer only
+// while frames ask for them (made when asked for, let go at the first frame that does not ask); the cloud
+// radiance and depth for full-resolution frames, and for reprojected frames whose reader asks for them
+// (the composite then writes them from the fresh pixels and the packed history). A renderer that has made
+// them keeps them.
+SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height, const FrameOutputs& outputs,
+                             bool reprojected);
+
+// Destroys `image` once the frames in flight that may use it are done (the newest frame context's
+// deletion queue); `image` is empty on return.
+void deferDestroy(Renderer& r, Image& image);
 
 // The reprojection images: the two full-resolution packed histories and the fresh pixels at the
 // resolution of the block in use (`blockPx`). The fresh images follow the block (finer near and inside

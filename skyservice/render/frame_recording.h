@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: MIT
-// One GPU frame: the passes recorded into one command buffer, their timestamps, and the readback.
+// One GPU frame: the passes recorded into the frame context's command buffer, the copies of the images a
+// reader asked for into its readback buffer, and, once its fence has signalled, the timestamps and pixels.
 #pragma once
 
+#include "skyservice/render/frame_context.h"
 #include "skyservice/render/frame_setup.h"
 #include "skyservice/render/renderer.h"
 
 namespace sky
 {
 
-// Timestamp slots: one before the frame and one after each pass.
+// Timestamp slots: one before the frame and one after each pass; two around the shadow map.
 enum TimestampSlot : uint32_t
 {
     kTsStart,
@@ -17,11 +19,34 @@ enum TimestampSlot : uint32_t
     kTsClouds,  ///< after the march (full or 1/16)
     kTsReconstruct,  ///< after the reconstruct pass (written right after kTsClouds in full mode)
     kTsComposite,
+    kTsShadowBegin,
+    kTsShadowEnd,
     kTsCount
 };
+static_assert(kTsCount <= kFrameTimestampSlots, "frame_context.h: kFrameTimestampSlots");
 
-// One frame on the GPU (`params`: what the frame uniforms hold): sky-view LUT, light volume, cloud march, composite, then the readback of every image.
-SkyStatus renderOnce(Renderer& r, const ViewRequest& request, const CameraFrame& camera, const SunMoon& sunMoon,
-                     const FrameInputs& in, const FrameParams& params, RenderResult& result);
+/// What the composite writes and the readback copies for `request` (its readback bits, the quality's
+/// linearOutput and readback switches).
+struct FrameOutputs
+{
+    bool display = false, cloud = false, depth = false, linear = false, sky = false, cloudLayer = false;
+    bool shadowDetail = false;
+    bool linearImage = false;  ///< the composite writes the linear frame (even when not read back)
+
+    static FrameOutputs of(const ViewRequest& request, const QualitySettings& quality);
+};
+
+/// Bytes of the readback buffer the frame needs (its images must exist: after ensureOutputImages etc.).
+VkDeviceSize frameReadbackBytes(const Renderer& r, const ViewRequest& request, const QualitySettings& quality);
+
+/// Records one frame into `frame.cmd` (`params`: what its frame uniforms hold): sky-view LUT, light volume,
+/// cloud march, reconstruct, composite, and the copies of the asked-for images. Sets facts.marchRowOrder.
+void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, const CameraFrame& camera,
+                 const SunMoon& sunMoon, const FrameInputs& in, const FrameParams& params, FrameReadbackPlan& plan,
+                 RenderResult& facts);
+
+/// After the frame's fence: the GPU times, the march's row lookups and the images of `plan` into `result`.
+void collectFrame(Renderer& r, const FrameContext& frame, const ViewRequest& request, bool reprojected,
+                  bool lightVolume, const FrameReadbackPlan& plan, RenderResult& result);
 
 }  // namespace sky

@@ -94,7 +94,7 @@ void recordLightVolume(Renderer& r, VkCommandBuffer cmd, const FrameParams& fram
     r.lightVolumeKey = key;
     for (uint32_t cascade = 0; cascade < (frame.lightVolumeFar.z > 0.0f ? 2u : 1u); ++cascade)
         dispatch(r.ctx, cmd, r.lightVolumeProgram, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS, cascade,
-                 {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.weatherWindowImage, r.linearClamp),
+                 {DescriptorInfo(recording(r).frameUniforms), DescriptorInfo(r.weatherWindowImage, r.linearClamp),
                   DescriptorInfo(r.baseNoise, r.linearRepeat), DescriptorInfo(r.detailNoise, r.linearRepeat),
                   DescriptorInfo(r.curlNoise, r.linearRepeat),
                   DescriptorInfo(cascade == 0 ? r.lightVolume : r.lightVolumeFar)});

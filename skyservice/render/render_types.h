@@ -128,17 +128,43 @@ struct QualitySettings
     bool reprojected = false;
 };
 
+/// The images a frame copies back to the host (bits of ViewRequest::readback). What is not asked for
+/// stays on the GPU (and is not even drawn, for the layers only a reader needs).
+enum ReadbackBits : uint32_t
+{
+    kReadDisplay = 1u,     ///< RenderResult::displayRgba8: tone-mapped sRGB
+    kReadCloud = 2u,       ///< cloudRgbaHalf: the clouds before aerial perspective (EXR files, statistics)
+    kReadDepth = 4u,       ///< cloudDepthM: transmittance-weighted cloud distance
+    kReadSky = 8u,         ///< skyRgbaHalf: linear sky radiance without clouds
+    kReadCloudLayer = 16u, ///< cloudLayerRgbaHalf: premultiplied cloud radiance after aerial perspective + alpha
+    kReadShadowDetail = 32u,  ///< shadowOpticalDepth as well as shadowTransmittance (files, tests)
+    kReadEverything = kReadDisplay | kReadCloud | kReadDepth | kReadShadowDetail,  ///< what one-shot renders want
+};
+
+/// An off-centre frustum, as the channels of a display wall have (CIGI View Definition): the angles from
+/// the view axis to the left, right, upper and lower edges (degrees, each in (-85, 85), left + right and
+/// up + down > 1). When `asymmetric` is set it replaces ViewRequest::fovYDeg.
+struct Frustum
+{
+    bool asymmetric = false;
+    double leftDeg = 0, rightDeg = 0, upDeg = 0, downDeg = 0;
+};
+
 /// One view to render.
 struct ViewRequest
 {
     EyePose pose;
     double fovYDeg = 60.0;           ///< vertical field of view (degrees)
+    Frustum frustum;                 ///< off-centre frustum (replaces fovYDeg when asymmetric)
     uint32_t width = 640;
     uint32_t height = 360;
     int64_t unixTimeS = 0;           ///< UTC time of the view (s since 1970)
     bool shadowMap = false;          ///< also render the cloud shadow map (skyservice/render/shadow_map.h)
     uint32_t shadowMapSize = 1024;   ///< shadow map texels per side
     double shadowMapExtentM = 150000.0;  ///< edge length of the shadow map's square on the ground (m)
+    /// What to copy back (ReadbackBits); the linear frame follows QualitySettings::linearOutput and
+    /// QualitySettings::readback = false copies nothing.
+    uint32_t readback = kReadEverything;
 };
 
 /// Pixels and facts of a finished render. Images are row-major, top row first.
@@ -153,6 +179,11 @@ struct RenderResult
     std::vector<float> cloudDepthM;
     std::vector<uint16_t> linearRgbaHalf; ///< final linear radiance (sky + clouds), half floats; empty without QualitySettings::linearOutput
     std::vector<uint8_t> displayRgba8;    ///< tone-mapped sRGB
+    /// Compositing layers (kReadSky, kReadCloudLayer), half floats, pre-exposed like linearRgbaHalf: the sky
+    /// without clouds, and the clouds as seen through the air in front of them, premultiplied, so that
+    /// linear = sky * (1 - cloud.a) + cloud.rgb.
+    std::vector<uint16_t> skyRgbaHalf;
+    std::vector<uint16_t> cloudLayerRgbaHalf;
     std::map<std::string, double> gpuMs;  ///< GPU time per pass (ms)
     double cpuSetupMs = 0;                ///< CPU time to prepare the frame (weather window etc.)
     double sunAzimuthDeg = 0, sunElevationDeg = 0;

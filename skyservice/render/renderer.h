@@ -13,6 +13,7 @@
 
 #include "shaders/shared/atmosphere_params.h"
 #include "skyservice/earth/weather_window.h"
+#include "skyservice/render/frame_context.h"
 #include "skyservice/render/render_types.h"
 #include "skyservice/render/light_volume.h"
 #include "skyservice/render/march_order.h"
@@ -56,6 +57,7 @@ struct Renderer
     MarchOrder marchOrder;  ///< the march's workgroup-row order and the lookups of the last march (march_order.h)
     uint32_t marchDispatchRanges = 1;  ///< contiguous ranges the device runs a dispatch in (dispatchRanges)
     Image cloudImage, depthImage, displayImage;
+    Image skyImage, cloudLayerImage;  ///< compositing layers, only while frames ask for them (kReadSky, kReadCloudLayer)
     Image linearImage;  ///< only while frames ask for it (QualitySettings::linearOutput)
     // Reprojection (created on the first reprojected frame): the marched pixels at block resolution
     // (the size of the block in use), and the reconstructed cloud radiance, alpha and depth of the last
@@ -64,11 +66,13 @@ struct Renderer
     Image history[2];
     // 1x1 images bound where a pass has nothing to read or write (every binding needs an image):
     // the linear frame when none is asked for, the history in full-resolution frames.
-    Image linearStandIn, historyStandIn;
+    Image linearStandIn, historyStandIn, depthStandIn;
     ReprojectionHistory reprojection;
-    Buffer frameUniforms, atmosphereUniforms;
+    /// The per-frame objects (frame_context.h), used in turn; frames[currentFrame] is the one being
+    /// recorded, or the last one submitted.
+    FrameContext frames[kFramesInFlight];
+    uint32_t currentFrame = 0;
     VkSampler linearRepeat = VK_NULL_HANDLE, linearClamp = VK_NULL_HANDLE, nearestRepeat = VK_NULL_HANDLE;
-    VkQueryPool timestamps = VK_NULL_HANDLE;
     ShadowMapPass shadowPass;
 
     std::shared_ptr<const WeatherSnapshot> weather;  ///< shared with the window worker thread
@@ -92,6 +96,22 @@ struct Renderer
     AtmosphereReference cpuAtmosphere;   ///< CPU copy of the atmosphere LUTs, for the lighting estimate
     double cpuAtmosphereRadiusM = -1;    ///< ground radius cpuAtmosphere was built for
 };
+
+/// A frame submitted by submitView and not yet collected by finishView.
+struct FrameTicket
+{
+    bool pending = false;
+    uint32_t context = 0;       ///< index into Renderer::frames
+    ViewRequest request;
+    bool reprojected = false;
+    bool lightVolume = false;   ///< the frame drew a light volume (gpuMs["lightVolume"])
+    FrameReadbackPlan plan;
+    ShadowMapReadback shadow;
+    RenderResult facts;         ///< what was known at submit time (sun, exposure, weather, march order...)
+};
+
+/// The frame context being recorded (its uniform buffers are the ones the passes bind).
+inline FrameContext& recording(Renderer& r) { return r.frames[r.currentFrame]; }
 
 SkyStatus createRenderer(Renderer& r, const RendererOptions& options);
 void destroyRenderer(Renderer& r);
@@ -121,10 +141,32 @@ bool weatherStagePending(const Renderer& r);
 /// automatically (limits in reprojection.h).
 void dropHistory(Renderer& r);
 
-/// Renders one view and reads the images back. With quality.reprojected the cloud image is
-/// reconstructed from this frame's 1/16 of marched pixels and the previous reprojected frame; full
-/// renders in between do not disturb that history.
+/// Renders one view and reads back the images request.readback asks for: submitView then finishView. With
+/// quality.reprojected the cloud image is reconstructed from this frame's 1/16 of marched pixels and the
+/// previous reprojected frame; full renders in between do not disturb that history. With
+/// quality.accumulationFrames > 1 (and not reprojected) the frames are averaged on the host.
 SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySettings& quality, RenderResult& result);
+
+/// Prepares one frame on the CPU, records it and submits it, without waiting for the GPU: a caller can
+/// prepare the next frame while the GPU runs this one. At most kFramesInFlight tickets may be pending;
+/// collect them with finishView in the order they were submitted. One frame: accumulationFrames is ignored.
+SkyStatus submitView(Renderer& r, const ViewRequest& request, const QualitySettings& quality, FrameTicket& ticket);
+/// Waits for the ticket's frame and fills `result` (GPU times, facts, and with `copyPixels` the pixels asked
+/// for; without, the pixel vectors are left empty and mappedFrame gives them in place). `result`'s vectors
+/// keep their capacity from frame to frame.
+SkyStatus finishView(Renderer& r, FrameTicket& ticket, RenderResult& result, bool copyPixels = true);
+
+/// A finished frame's pixels where the GPU copied them (the frame context's host-cached readback buffer):
+/// valid until that context records again, kFramesInFlight submitView calls later. Null: not read back.
+struct MappedFrame
+{
+    const uint8_t* displayRgba8 = nullptr;
+    const uint16_t* skyRgbaHalf = nullptr;
+    const uint16_t* cloudLayerRgbaHalf = nullptr;
+    const float* cloudDepthM = nullptr;
+    const float* shadowTransmittance = nullptr;
+};
+MappedFrame mappedFrame(const Renderer& r, const FrameTicket& ticket);
 /// Why the last reprojected frame did not use history ("" when it did).
 const std::string& lastHistoryDropReason(const Renderer& r);
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/shadow_map.h"
 
+#include "skyservice/render/frame_recording.h"
 #include "skyservice/render/renderer.h"
 
 #include <GeographicLib/AzimuthalEquidistant.hpp>
@@ -19,10 +20,6 @@ namespace sky
 namespace
 {
 
-// Timestamp slots borrowed from the renderer's pool: the frame's own queries are read before this runs.
-constexpr uint32_t kTsBegin = 0;
-constexpr uint32_t kTsEnd = 1;
-
 nlohmann::json latLonJson(const ShadowMapGeometry& g, double eastM, double northM)
 {
     double lat = 0, lon = 0;
@@ -36,21 +33,25 @@ nlohmann::json directionJson(const CelestialPosition& body)
     return {{"directionEnu", {d.x, d.y, d.z}}, {"azimuthDeg", body.azimuthDeg}, {"elevationDeg", body.elevationDeg}};
 }
 
-SkyStatus ensureShadowImage(Renderer& r, uint32_t size)
+SkyStatus ensureShadowImages(Renderer& r, uint32_t size)
 {
     ShadowMapPass& pass = r.shadowPass;
     if (pass.image.image && pass.image.extent.width == size)
         return SkyStatus::success();
     VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize only: never in steady state
     destroyImage(r.ctx, r.memory, pass.image);
+    destroyImage(r.ctx, r.memory, pass.transmittance);
     ImageDesc d;
     d.width = d.height = size;
     d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
     d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
     SKY_TRY(createImage(r.ctx, r.memory, pass.image, d, "cloud shadow map"));
+    d.format = VK_FORMAT_R32_SFLOAT;
+    SKY_TRY(createImage(r.ctx, r.memory, pass.transmittance, d, "cloud shadow map transmittance (float)"));
     OneShot shot;
     SKY_TRY(beginOneShot(r.ctx, shot));
     transitionImage(shot.cmd, pass.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    transitionImage(shot.cmd, pass.transmittance, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     return endOneShot(r.ctx, shot);
 }
 
@@ -144,14 +145,20 @@ SkyStatus createShadowMapPass(const Context& ctx, ShadowMapPass& pass)
 void destroyShadowMapPass(const Context& ctx, MemoryTracker& memory, ShadowMapPass& pass)
 {
     destroyImage(ctx, memory, pass.image);
+    destroyImage(ctx, memory, pass.transmittance);
     destroyProgram(ctx, pass.program);
 }
 
-SkyStatus renderShadowMap(Renderer& r, const ViewRequest& request, const QualitySettings& quality,
-                          const CameraFrame& camera, const SunMoon& sunMoon, RenderResult& result)
+SkyStatus prepareShadowMap(Renderer& r, const ViewRequest& request)
+{
+    return request.shadowMap ? ensureShadowImages(r, request.shadowMapSize) : SkyStatus::success();
+}
+
+void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request, const QualitySettings& quality,
+                     const CameraFrame& camera, const SunMoon& sunMoon, ShadowMapReadback& readback,
+                     RenderResult& facts)
 {
     const uint32_t size = request.shadowMapSize;
-    SKY_TRY(ensureShadowImage(r, size));
     ShadowMapGeometry g;
     g.centreLatDeg = camera.eye.latDeg;
     g.centreLonDeg = camera.eye.lonDeg;
@@ -165,39 +172,67 @@ SkyStatus renderShadowMap(Renderer& r, const ViewRequest& request, const Quality
     push.grid = vec4(float(g.texelSizeM()), float(0.5 * g.extentM), 0.0f, 0.0f);
     push.params = uvec4(size, quality.shadowSteps, 0u, 0u);
 
-    OneShot shot;
-    SKY_TRY(beginOneShot(r.ctx, shot));
-    vkCmdResetQueryPool(shot.cmd, r.timestamps, kTsBegin, 2);
-    vkCmdWriteTimestamp(shot.cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r.timestamps, kTsBegin);
-    dispatch(r.ctx, shot.cmd, r.shadowPass.program, size, size, 1, push,
-             {DescriptorInfo(r.frameUniforms), DescriptorInfo(r.weatherWindowImage, r.linearClamp),
+    VkCommandBuffer cmd = frame.cmd;
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, frame.timestamps, kTsShadowBegin);
+    dispatch(r.ctx, cmd, r.shadowPass.program, size, size, 1, push,
+             {DescriptorInfo(frame.frameUniforms), DescriptorInfo(r.weatherWindowImage, r.linearClamp),
               DescriptorInfo(r.baseNoise, r.linearRepeat), DescriptorInfo(r.detailNoise, r.linearRepeat),
               DescriptorInfo(r.curlNoise, r.linearRepeat), DescriptorInfo(r.shadowPass.image)});
-    computeBarrier(shot.cmd);
-    vkCmdWriteTimestamp(shot.cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, r.timestamps, kTsEnd);
-    SKY_TRY(endOneShot(r.ctx, shot));
+    computeBarrier(cmd);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsShadowEnd);
+    readback = ShadowMapReadback{};
+    readback.recorded = true;
+    if (quality.readback)
+    {
+        // The transmittance as the float texels readers want, converted on the GPU: a same-size NEAREST
+        // blit of the red channel is an exact half -> float conversion.
+        VkImageBlit blit = {};
+        blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        blit.dstSubresource = blit.srcSubresource;
+        blit.srcOffsets[1] = {int32_t(size), int32_t(size), 1};
+        blit.dstOffsets[1] = blit.srcOffsets[1];
+        const Image& source = r.shadowPass.image;
+        const Image& target = r.shadowPass.transmittance;
+        transitionImage(cmd, source, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        transitionImage(cmd, target, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        vkCmdBlitImage(cmd, source.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target.image,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+        transitionImage(cmd, source, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+        transitionImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+        readback.transmittance = addImageReadback(frame, r.shadowPass.transmittance);
+        if ((request.readback & kReadShadowDetail) != 0)
+            readback.detail = addImageReadback(frame, r.shadowPass.image);
+    }
+    facts.shadowMapSize = size;
+    facts.shadowMap = shadowMapMetadata(g, sunMoon, camera.localEarthRadiusM, request.unixTimeS,
+                                        r.weather->validTimeUnixS);
+}
+
+void collectShadowMap(const Renderer& r, const FrameContext& frame, const ShadowMapReadback& readback,
+                      RenderResult& result)
+{
+    if (!readback.recorded)
+        return;
     uint64_t ts[2] = {0, 0};
     if (r.ctx.timestampPeriodNs > 0 &&
-        vkGetQueryPoolResults(r.ctx.device, r.timestamps, kTsBegin, 2, sizeof ts, ts, sizeof(uint64_t),
+        vkGetQueryPoolResults(r.ctx.device, frame.timestamps, kTsShadowBegin, 2, sizeof ts, ts, sizeof(uint64_t),
                               VK_QUERY_RESULT_64_BIT) == VK_SUCCESS)
-        result.gpuMs["shadowMap"] = double(ts[kTsEnd] - ts[kTsBegin]) * r.ctx.timestampPeriodNs * 1e-6;
-
-    std::vector<uint8_t> bytes;
-    SKY_TRY(readbackImage(r.ctx, r.memory, r.shadowPass.image, bytes));
-    size_t texels = size_t(size) * size;
-    std::vector<uint16_t> halves(bytes.size() / 2);
-    std::memcpy(halves.data(), bytes.data(), halves.size() * 2);
-    result.shadowMapSize = size;
-    result.shadowTransmittance.resize(texels);
-    result.shadowOpticalDepth.resize(texels);
-    for (size_t i = 0; i < texels; ++i)
+        result.gpuMs["shadowMap"] = double(ts[1] - ts[0]) * r.ctx.timestampPeriodNs * 1e-6;
+    const uint8_t* mapped = static_cast<const uint8_t*>(frame.readback.mapped);
+    result.shadowTransmittance.resize(size_t(readback.transmittance.bytes) / sizeof(float));
+    if (readback.transmittance.bytes > 0)
+        std::memcpy(result.shadowTransmittance.data(), mapped + readback.transmittance.offset,
+                    readback.transmittance.bytes);
+    result.shadowOpticalDepth.clear();
+    if (readback.detail.bytes > 0)
     {
-        result.shadowTransmittance[i] = glm::unpackHalf1x16(halves[i * 4 + 0]);
-        result.shadowOpticalDepth[i] = glm::unpackHalf1x16(halves[i * 4 + 1]);
+        const size_t texels = size_t(readback.detail.bytes) / 8;
+        std::vector<uint16_t> halves(texels * 4);
+        std::memcpy(halves.data(), mapped + readback.detail.offset, readback.detail.bytes);
+        result.shadowOpticalDepth.resize(texels);
+        for (size_t i = 0; i < texels; ++i)
+            result.shadowOpticalDepth[i] = glm::unpackHalf1x16(halves[i * 4 + 1]);
     }
-    result.shadowMap = shadowMapMetadata(g, sunMoon, camera.localEarthRadiusM, request.unixTimeS,
-                                         r.weather->validTimeUnixS);
-    return SkyStatus::success();
 }
 
 }  // namespace sky

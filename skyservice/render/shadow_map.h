@@ -10,10 +10,11 @@
 // which is how the weather window places the model's cells; the GPU puts the same point on the eye's
 // osculating sphere (error < 1 m within 50 km, 10 m at 200 km: skyservice/earth/geodesy.h).
 //
-// Usage (inside renderView, after the frame): validateShadowMapRequest, then renderShadowMap.
+// Usage (inside a frame): validateShadowMapRequest, prepareShadowMap, recordShadowMap, then collectShadowMap.
 #pragma once
 
 #include "shaders/shared/shadow_map_params.h"
+#include "skyservice/render/frame_context.h"
 #include "skyservice/render/render_types.h"
 #include "skyservice/sky/ephemeris.h"
 #include "skyservice/vk/programs.h"
@@ -92,27 +93,45 @@ nlohmann::json shadowMapMetadata(const ShadowMapGeometry& geometry, const SunMoo
 struct ShadowMapPass
 {
     Program program;
-    Image image;  ///< rgba16f, sizeTexels^2, GENERAL layout; (re)made when the size changes
+    Image image;  ///< rgba16f (transmittance, optical depth), sizeTexels^2, GENERAL; (re)made with the size
+    Image transmittance;  ///< r32f: the transmittance as readers take it (blitted from `image`)
+};
+
+/// Where a frame's shadow map lies in its readback buffer.
+struct ShadowMapReadback
+{
+    bool recorded = false;             ///< the frame rendered a shadow map
+    ReadbackRegion transmittance;      ///< float texels
+    ReadbackRegion detail;             ///< the RGBA16F image (kReadShadowDetail)
 };
 
 /// Loads the shadow_map program (the image is made on first use).
 SkyStatus createShadowMapPass(const Context& ctx, ShadowMapPass& pass);
 void destroyShadowMapPass(const Context& ctx, MemoryTracker& memory, ShadowMapPass& pass);
 
+/// Makes the shadow-map images of the request's size (before the frame's commands begin; a resize waits for
+/// the queue, the steady frame does not).
+SkyStatus prepareShadowMap(Renderer& r, const ViewRequest& request);
+
 /**
- * Render the shadow map of the frame just rendered and read it back.
+ * Record the shadow map of the frame into its command buffer, and the copies of its texels.
  *
- * @param[in,out] r the renderer; r.frameUniforms, r.window and r.weatherWindowImage must hold the frame
- *   (renderView calls this after its last frame).
- * @param[in] request the view (shadowMapSize, shadowMapExtentM; validated).
- * @param[in] quality the settings (shadowSteps).
+ * @param[in,out] r the renderer; the frame's uniforms, r.window and r.weatherWindowImage must hold the frame.
+ * @param[in,out] frame the frame context being recorded (its readback buffer must have room:
+ *   frameReadbackBytes counts the shadow map).
+ * @param[in] request the view (shadowMapSize, shadowMapExtentM; validated; readback bits).
+ * @param[in] quality the settings (shadowSteps, readback).
  * @param[in] camera the eye's frame (centre of the map, osculating radius).
  * @param[in] sunMoon the sun and moon at the eye.
- * @param[out] result shadowMapSize, shadowTransmittance, shadowOpticalDepth, shadowMap (metadata) and
- *   gpuMs["shadowMap"].
- * @return success, or the Vulkan failure.
+ * @param[out] readback where the texels will lie.
+ * @param[out] facts shadowMapSize and shadowMap (metadata).
  **********************************************************************/
-SkyStatus renderShadowMap(Renderer& r, const ViewRequest& request, const QualitySettings& quality,
-                          const CameraFrame& camera, const SunMoon& sunMoon, RenderResult& result);
+void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request, const QualitySettings& quality,
+                     const CameraFrame& camera, const SunMoon& sunMoon, ShadowMapReadback& readback,
+                     RenderResult& facts);
+
+/// After the frame's fence: shadowTransmittance, shadowOpticalDepth (when read back) and gpuMs["shadowMap"].
+void collectShadowMap(const Renderer& r, const FrameContext& frame, const ShadowMapReadback& readback,
+                      RenderResult& result);
 
 }  // namespace sky

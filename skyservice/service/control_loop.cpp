@@ -49,6 +49,7 @@ ControlSocketServer::Handlers ControlLoop::handlers()
         clients_.erase(client);
         std::lock_guard<std::mutex> lock(c_.state->mutex);
         std::erase_if(c_.state->files, [client](const FilesSubscription& f) { return f.client == client; });
+        c_.state->shmLayers.erase(client);
     };
     return h;
 }
@@ -235,12 +236,24 @@ void ControlLoop::subscribe(ClientId client, const Request& request)
     switch (request.transport)
     {
     case Transport::Shm:
+    {
+        {
+            std::lock_guard<std::mutex> lock(s.mutex);
+            s.shmLayers[client] |= request.layers;  // a second subscribe adds layers
+        }
+        s.wake.notify_all();
+        nlohmann::json layers = nlohmann::json::array();
+        for (const char* name : {"display", "sky", "clouds", "depth"})
+            if (request.layers & layerBit(name))
+                layers.push_back(name);
         c_.server->send(client, replyWithId(request, {{"type", "subscribed"},
                                                      {"transport", "shm"},
                                                      {"shm_name", c_.ring->name()},
                                                      {"slots", c_.ring->slotCount()},
-                                                     {"total_bytes", c_.ring->totalBytes()}}));
+                                                     {"total_bytes", c_.ring->totalBytes()},
+                                                     {"layers", layers}}));
         return;
+    }
     case Transport::Vulkan:
         {
             std::lock_guard<std::mutex> lock(s.mutex);
@@ -297,6 +310,7 @@ nlohmann::json ControlLoop::statusJson()
             {"device", c_.deviceName},
             {"driver", c_.driver},
             {"device_memory_bytes", s.deviceMemoryBytes},
+            {"host_readback_bytes", s.hostReadbackBytes},
             {"view", viewJson(s.view)},
             {"time", formatIso8601Utc(int64_t(std::floor(simNow)))},
             {"time_unix_s", simNow},

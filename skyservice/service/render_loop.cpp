@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <unistd.h>
 
 namespace sky
@@ -74,23 +75,50 @@ std::string failedLine(const nlohmann::json& id, const std::string& message)
 
 }  // namespace
 
+/// A frame submitted to the GPU and not yet published.
+struct InFlightFrame
+{
+    FrameTicket ticket;
+    uint64_t id = 0;
+    ViewRequest request;
+    double simTimeS = 0;
+    SteadyClock::time_point start;
+    DrawnWeather drawn;        ///< the weather this frame drew (the schedule may move on before it is published)
+    uint32_t layers = 0;       ///< shm layers to publish (bit k = SKY_LAYER_k)
+    bool copyPixels = false;   ///< files are written from this frame: its pixels go to `result` too
+    std::vector<FilesSubscription> files;
+};
+
 struct RenderLoop::Impl
 {
     Setup setup;
-    RenderResult result;
+    RenderResult result;        ///< the last frame collected (pixels only when it wrote files)
+    bool resultHasPixels = false;
     ViewRequest lastRequest;
+    DrawnWeather lastDrawn;
     bool haveFrame = false;
     WeatherSchedule weatherSchedule;
     VulkanExport exporter;
     std::string lastLoggedError;
-    /// write_files requests that came while the frames had no linear frame (no EXR subscription): they
-    /// are written after the next frame, which makes it.
+    std::optional<InFlightFrame> inFlight;
+    /// write_files requests that came while the last frame had no pixels on the host (or no linear frame
+    /// for the EXR): they are written after the next frame, which reads them back.
     std::vector<RenderJob> pendingWriteFiles;
 
     void run();
-    void renderFrame(uint64_t id, ViewRequest request, const SimClock& clock, double simTimeS,
-                     const WeatherState& weather, const QualitySettings& quality,
-                     const std::vector<FilesSubscription>& files);
+    void startFrame(uint64_t id, ViewRequest request, const SimClock& clock, double simTimeS,
+                    const WeatherState& weather, const QualitySettings& quality,
+                    std::vector<FilesSubscription> files, uint32_t layers);
+    void completeFrame(InFlightFrame& frame);
+    void completeInFlight()
+    {
+        if (!inFlight)
+            return;
+        InFlightFrame frame = std::move(*inFlight);
+        inFlight.reset();
+        completeFrame(frame);
+    }
+    void frameDone(uint64_t id, const SkyStatus& status, double ms);
     void doJob(const RenderJob& job);
     bool writeFiles(const std::string& prefix, const std::string& format, std::string& error);
     void reply(ClientId client, std::string line, std::vector<int> fds = {})
@@ -126,6 +154,10 @@ void RenderLoop::stop()
     impl_->exporter.destroy(*impl_->setup.renderer);
 }
 
+// Frames in flight: a frame is submitted, and while the GPU renders it the loop goes on to the next one
+// (its CPU setup and recording) when one is due at once; the earlier frame is published after the later
+// one is submitted. When nothing else is due the frame in flight is published right away, so a client
+// that asks for one frame at a time waits for no other.
 void RenderLoop::Impl::run()
 {
     ServiceState& s = *setup.state;
@@ -133,27 +165,40 @@ void RenderLoop::Impl::run()
     for (;;)
     {
         std::unique_lock<std::mutex> lock(s.mutex);
+        bool idle = false;
         for (;;)
         {
             if (s.stop)
-                return;
+                break;
             if (!s.jobs.empty() || s.renderWantedUpTo > s.framesStarted)
                 break;
-            if (s.renderRateHz > 0)
+            if (s.renderRateHz > 0 && SteadyClock::now() >= nextDue)
+                break;
+            if (inFlight)
             {
-                if (SteadyClock::now() >= nextDue)
-                    break;
-                s.wake.wait_until(lock, nextDue);
+                idle = true;  // nothing due now: publish the frame in flight first
+                break;
             }
+            if (s.renderRateHz > 0)
+                s.wake.wait_until(lock, nextDue);
             else
                 s.wake.wait(lock);
         }
-        if (!s.jobs.empty())
+        if (idle || s.stop || !s.jobs.empty())
         {
-            RenderJob job = s.jobs.front();
-            s.jobs.pop_front();
+            const bool stopNow = s.stop && !idle;
+            std::optional<RenderJob> job;
+            if (!idle && !s.stop)
+            {
+                job = s.jobs.front();
+                s.jobs.pop_front();
+            }
             lock.unlock();
-            doJob(job);
+            completeInFlight();  // jobs read the latest frame
+            if (stopNow)
+                return;
+            if (job)
+                doJob(*job);
             continue;
         }
         uint64_t id = ++s.framesStarted;
@@ -164,6 +209,9 @@ void RenderLoop::Impl::run()
         WeatherState weather = s.weather;
         QualitySettings quality = s.quality;
         std::vector<FilesSubscription> files = s.files;
+        uint32_t layers = 1u << SKY_LAYER_DISPLAY;
+        for (const auto& [client, bits] : s.shmLayers)
+            layers |= bits;
         if (s.renderRateHz > 0)
         {
             auto period = std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(1.0 / s.renderRateHz));
@@ -171,35 +219,78 @@ void RenderLoop::Impl::run()
             nextDue = std::max(nextDue + period, now);
         }
         lock.unlock();
-        renderFrame(id, request, clock, simTimeS, weather, quality, files);
+        // The zero-copy export copies the display image after the frame: the frame in flight must be
+        // exported before the next one overwrites that image.
+        if (exporter.active())
+            completeInFlight();
+        startFrame(id, request, clock, simTimeS, weather, quality, std::move(files), layers);
     }
 }
 
-void RenderLoop::Impl::renderFrame(uint64_t id, ViewRequest request, const SimClock& clock, double simTimeS,
-                                   const WeatherState& weather, const QualitySettings& quality,
-                                   const std::vector<FilesSubscription>& files)
+void RenderLoop::Impl::startFrame(uint64_t id, ViewRequest request, const SimClock& clock, double simTimeS,
+                                  const WeatherState& weather, const QualitySettings& quality,
+                                  std::vector<FilesSubscription> files, uint32_t layers)
 {
     Renderer& r = *setup.renderer;
-    auto start = SteadyClock::now();
+    InFlightFrame frame;
+    frame.start = SteadyClock::now();
+    frame.id = id;
     request.unixTimeS = int64_t(std::floor(simTimeS));
     weatherSchedule.beforeFrame(r, weather, clock, simTimeS);  // a new weather is prepared off this thread
-    // The linear frame (16.6 MB at 1080p) only for EXR files: a files subscription that writes them, or a
-    // write_files request waiting for this frame.
+    // What this frame reads back: the layers shm subscribers asked for; everything files need when this
+    // frame writes files (the linear frame, 16.6 MB at 1080p, only for EXR files).
+    const bool writesFiles = !pendingWriteFiles.empty() ||
+                             std::any_of(files.begin(), files.end(),
+                                         [id](const FilesSubscription& f) { return id % f.every == 0; });
+    const bool exr = !pendingWriteFiles.empty() ||
+                     std::any_of(files.begin(), files.end(), [](const FilesSubscription& f) { return f.format != "png"; });
     QualitySettings frameQuality = quality;
-    frameQuality.linearOutput = !pendingWriteFiles.empty() ||
-                                std::any_of(files.begin(), files.end(),
-                                            [](const FilesSubscription& f) { return f.format != "png"; });
-    SkyStatus status = renderView(r, request, frameQuality, result);
+    frameQuality.linearOutput = writesFiles && exr;
+    request.readback = kReadDisplay;
+    if (layers & (1u << SKY_LAYER_SKY))
+        request.readback |= kReadSky;
+    if (layers & (1u << SKY_LAYER_CLOUDS))
+        request.readback |= kReadCloudLayer;
+    if (layers & (1u << SKY_LAYER_DEPTH))
+        request.readback |= kReadDepth;
+    if (writesFiles)
+        request.readback |= kReadEverything;
+    frame.request = request;
+    frame.simTimeS = simTimeS;
+    frame.layers = layers;
+    frame.copyPixels = writesFiles;
+    frame.files = std::move(files);
+    SkyStatus status = submitView(r, request, frameQuality, frame.ticket);
     weatherSchedule.afterFrame(r);
-    double ms = std::chrono::duration<double, std::milli>(SteadyClock::now() - start).count();
+    frame.drawn = weatherSchedule.drawn();
+    if (!status.ok())
+    {
+        completeInFlight();
+        frameDone(id, status, std::chrono::duration<double, std::milli>(SteadyClock::now() - frame.start).count());
+        return;
+    }
+    std::optional<InFlightFrame> previous = std::move(inFlight);
+    inFlight = std::move(frame);
+    if (previous)
+        completeFrame(*previous);
+}
+
+void RenderLoop::Impl::completeFrame(InFlightFrame& frame)
+{
+    Renderer& r = *setup.renderer;
+    SkyStatus status = finishView(r, frame.ticket, result, frame.copyPixels);
     std::string error;
     if (status.ok())
     {
         haveFrame = true;
-        lastRequest = request;
+        resultHasPixels = frame.copyPixels;
+        lastRequest = frame.request;
+        lastDrawn = frame.drawn;
+        const ViewRequest& request = frame.request;
+        const MappedFrame pixels = mappedFrame(r, frame.ticket);
         ShmFrame f;
-        f.frameId = id;
-        f.simTimeUnixS = simTimeS;
+        f.frameId = frame.id;
+        f.simTimeUnixS = frame.simTimeS;
         f.exposure = result.exposure;
         f.view = SkyShmView{request.pose.latDeg, lonToRange(request.pose.lonDeg), request.pose.altitudeM,
                             request.pose.headingDeg, request.pose.pitchDeg, request.pose.rollDeg, request.fovYDeg,
@@ -208,50 +299,67 @@ void RenderLoop::Impl::renderFrame(uint64_t id, ViewRequest request, const SimCl
         f.width = result.width;
         f.height = result.height;
         f.rowBytes = result.width * 4;
-        f.pixels = result.displayRgba8.data();
+        f.pixels = pixels.displayRgba8;
+        if (frame.layers & (1u << SKY_LAYER_SKY))
+            f.layers[SKY_LAYER_SKY] = pixels.skyRgbaHalf;
+        if (frame.layers & (1u << SKY_LAYER_CLOUDS))
+            f.layers[SKY_LAYER_CLOUDS] = pixels.cloudLayerRgbaHalf;
+        if (frame.layers & (1u << SKY_LAYER_DEPTH))
+            f.layers[SKY_LAYER_DEPTH] = pixels.cloudDepthM;
         if (result.shadowMapSize > 0)
         {
-            f.shadowTransmittance = result.shadowTransmittance.data();
+            f.shadowTransmittance = pixels.shadowTransmittance;
             f.shadow = shadowGeoRef(result);
         }
         uint32_t slot = setup.ring->beginSlot();
-        if (exporter.active() && !exporter.exportFrame(r, slot, id, result, error))
-            SKY_LOG_WARN("frame %llu: zero-copy export: %s", (unsigned long long)id, error.c_str());
+        if (exporter.active() && !exporter.exportFrame(r, slot, frame.id, result, error))
+            SKY_LOG_WARN("frame %llu: zero-copy export: %s", (unsigned long long)frame.id, error.c_str());
         if (!setup.ring->endSlot(f, error))
-            SKY_LOG_WARN("frame %llu: not published: %s", (unsigned long long)id, error.c_str());
+            SKY_LOG_WARN("frame %llu: not published: %s", (unsigned long long)frame.id, error.c_str());
         error.clear();
     }
-    else
+    for (const FilesSubscription& sub : frame.files)
+    {
+        if (!status.ok() || frame.id % sub.every != 0)
+            continue;
+        char name[32];
+        std::snprintf(name, sizeof name, "/frame-%08llu", (unsigned long long)frame.id);
+        std::string why;
+        if (!writeFiles(sub.dir + name, sub.format, why))
+            SKY_LOG_WARN("files subscription: %s", why.c_str());
+    }
+    if (frame.copyPixels)
+    {
+        std::vector<RenderJob> waiting;
+        waiting.swap(pendingWriteFiles);
+        for (const RenderJob& job : waiting)
+        {
+            std::string why = status.message;
+            if (status.ok() && writeFiles(job.path, "both", why))
+                reply(job.client, okLine(RequestType::WriteFiles, job.requestId));
+            else
+                reply(job.client, failedLine(job.requestId, why));
+        }
+    }
+    frameDone(frame.id, status, std::chrono::duration<double, std::milli>(SteadyClock::now() - frame.start).count());
+}
+
+void RenderLoop::Impl::frameDone(uint64_t id, const SkyStatus& status, double ms)
+{
+    Renderer& r = *setup.renderer;
+    std::string error;
+    if (!status.ok())
     {
         error = status.message;
         if (error != lastLoggedError)  // one line per distinct failure, not one per frame
             SKY_LOG_ERROR("frame %llu: %s", (unsigned long long)id, error.c_str());
     }
     lastLoggedError = error;
-    for (const FilesSubscription& sub : files)
-    {
-        if (!haveFrame || !status.ok() || id % sub.every != 0)
-            continue;
-        char name[32];
-        std::snprintf(name, sizeof name, "/frame-%08llu", (unsigned long long)id);
-        std::string why;
-        if (!writeFiles(sub.dir + name, sub.format, why))
-            SKY_LOG_WARN("files subscription: %s", why.c_str());
-    }
-    std::vector<RenderJob> waiting;
-    waiting.swap(pendingWriteFiles);
-    for (const RenderJob& job : waiting)
-    {
-        std::string why = status.message;
-        if (status.ok() && writeFiles(job.path, "both", why))
-            reply(job.client, okLine(RequestType::WriteFiles, job.requestId));
-        else
-            reply(job.client, failedLine(job.requestId, why));
-    }
-    VkDeviceSize memory = 0;
+    VkDeviceSize memory = 0, hostReadback = 0;
     {
         std::lock_guard<std::mutex> lock(r.memory.mutex);
         memory = r.memory.totalBytes;
+        hostReadback = r.memory.hostReadbackBytes;
     }
     std::lock_guard<std::mutex> lock(setup.state->mutex);
     ServiceState& s = *setup.state;
@@ -260,22 +368,22 @@ void RenderLoop::Impl::renderFrame(uint64_t id, ViewRequest request, const SimCl
         s.lastFrameId = id;
         ++s.framesRendered;
         s.recordFrameMs(ms);
-        const DrawnWeather& drawn = weatherSchedule.drawn();
-        s.frameWeather = FrameWeather{drawn.serviceVersion, drawn.source, result.weatherValidTimeUnixS, true};
+        s.frameWeather = FrameWeather{lastDrawn.serviceVersion, lastDrawn.source, result.weatherValidTimeUnixS, true};
     }
     s.weatherPending = weatherSchedule.pending();
     s.windowsMadeOnFramePath = r.windowPrefetch.madeOnFrame;
     s.windowsFromWorker = r.windowPrefetch.used + r.weatherStage.swapped;
     s.lastRenderError = error;
     s.deviceMemoryBytes = memory;
+    s.hostReadbackBytes = hostReadback;
     SKY_LOG_DEBUG("frame %llu: %.1f ms", (unsigned long long)id, ms);
 }
 
 bool RenderLoop::Impl::writeFiles(const std::string& prefix, const std::string& format, std::string& error)
 {
     RenderFacts facts;
-    facts.weatherSource = weatherSchedule.drawn().source;  // afterFrame: the weather `result` drew
-    facts.weatherVersion = weatherSchedule.drawn().serviceVersion;
+    facts.weatherSource = lastDrawn.source;  // the weather `result` drew
+    facts.weatherVersion = lastDrawn.serviceVersion;
     facts.timeIso = formatIso8601Utc(lastRequest.unixTimeS);
     facts.deviceName = setup.renderer->ctx.deviceName;
     facts.driver = setup.renderer->ctx.driverInfo;
@@ -297,9 +405,10 @@ void RenderLoop::Impl::doJob(const RenderJob& job)
     {
         if (!haveFrame)
             reply(job.client, failedLine(job.requestId, "no frame has been rendered yet"));
-        else if (result.linearRgbaHalf.empty())
+        else if (!resultHasPixels || result.linearRgbaHalf.empty())
         {
-            // The last frame has no linear frame for the EXR: render the next one with it, now.
+            // The last frame's pixels are not on the host (or it has no linear frame for the EXR): render
+            // the next one with them, now.
             pendingWriteFiles.push_back(job);
             std::lock_guard<std::mutex> lock(setup.state->mutex);
             setup.state->renderWantedUpTo = std::max(setup.state->renderWantedUpTo, setup.state->framesStarted + 1);

@@ -15,6 +15,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -100,6 +101,9 @@ struct ServiceState
     double renderRateHz = 0;
     uint64_t renderWantedUpTo = 0; ///< render on demand until this frame id has started
     std::vector<FilesSubscription> files;
+    /// Shared-memory subscribers and the layers each asked for (bit k = SKY_LAYER_k, skyservice/ipc/shm_layout.h):
+    /// frames draw and publish the union; the display layer is published always.
+    std::map<ClientId, uint32_t> shmLayers;
     std::deque<RenderJob> jobs;
     bool stop = false;
 
@@ -110,6 +114,7 @@ struct ServiceState
     std::vector<double> frameMs;   ///< the last kFrameHistory frame times (ring), ms
     size_t frameMsNext = 0;
     uint64_t deviceMemoryBytes = 0;
+    uint64_t hostReadbackBytes = 0;  ///< the frames' host-cached readback buffers (system RAM)
     std::string lastRenderError;
     std::deque<PendingReply> replies;
     FrameWeather frameWeather;      ///< the weather of the last published frame

@@ -21,14 +21,24 @@ bool chooseMemoryType(const Context& ctx, uint32_t typeBits, VkMemoryPropertyFla
 }
 
 SkyStatus allocate(const Context& ctx, MemoryTracker& tracker, const VkMemoryRequirements& req, MemoryUse use,
-                   const char* name, VkDeviceMemory& memory)
+                   const char* name, VkDeviceMemory& memory, bool* coherent = nullptr)
 {
-    VkMemoryPropertyFlags wanted = use == MemoryUse::HostVisible
-                                       ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-                                       : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
     uint32_t type = 0;
-    if (!chooseMemoryType(ctx, req.memoryTypeBits, wanted, type))
+    bool found = false;
+    if (use == MemoryUse::HostReadback)
+        found = chooseMemoryType(ctx, req.memoryTypeBits,
+                                 VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, type);
+    if (!found)
+    {
+        VkMemoryPropertyFlags wanted = use == MemoryUse::DeviceLocal
+                                           ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT
+                                           : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        found = chooseMemoryType(ctx, req.memoryTypeBits, wanted, type);
+    }
+    if (!found)
         return SkyStatus::failure(std::string("no suitable memory type for ") + name, VK_ERROR_OUT_OF_DEVICE_MEMORY);
+    if (coherent)
+        *coherent = (ctx.memoryProperties.memoryTypes[type].propertyFlags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) != 0;
     VkMemoryAllocateInfo info = {VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     info.allocationSize = req.size;
     info.memoryTypeIndex = type;
@@ -42,13 +52,18 @@ SkyStatus allocate(const Context& ctx, MemoryTracker& tracker, const VkMemoryReq
     }
     std::lock_guard<std::mutex> lock(tracker.mutex);
     tracker.liveBytes[name] += req.size;
-    tracker.totalBytes += req.size;
-    tracker.peakBytes = std::max(tracker.peakBytes, tracker.totalBytes);
+    if (use == MemoryUse::HostReadback)
+        tracker.hostReadbackBytes += req.size;
+    else
+    {
+        tracker.totalBytes += req.size;
+        tracker.peakBytes = std::max(tracker.peakBytes, tracker.totalBytes);
+    }
     return SkyStatus::success();
 }
 
 void release(const Context& ctx, MemoryTracker& tracker, VkDeviceMemory& memory, VkDeviceSize size,
-             const std::string& name)
+             const std::string& name, bool hostReadback = false)
 {
     if (!memory)
         return;
@@ -62,7 +77,8 @@ void release(const Context& ctx, MemoryTracker& tracker, VkDeviceMemory& memory,
         if (it->second == 0)
             tracker.liveBytes.erase(it);
     }
-    tracker.totalBytes -= std::min(tracker.totalBytes, size);
+    VkDeviceSize& total = hostReadback ? tracker.hostReadbackBytes : tracker.totalBytes;
+    total -= std::min(total, size);
 }
 
 }  // namespace
@@ -101,7 +117,8 @@ SkyStatus createBuffer(const Context& ctx, MemoryTracker& tracker, Buffer& out, 
     VK_TRY(vkCreateBuffer(ctx.device, &info, nullptr, &out.buffer));
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(ctx.device, out.buffer, &req);
-    SkyStatus s = allocate(ctx, tracker, req, use, name, out.memory);
+    bool coherent = true;
+    SkyStatus s = allocate(ctx, tracker, req, use, name, out.memory, &coherent);
     if (!s.ok())
     {
         vkDestroyBuffer(ctx.device, out.buffer, nullptr);
@@ -109,8 +126,10 @@ SkyStatus createBuffer(const Context& ctx, MemoryTracker& tracker, Buffer& out, 
         return s;
     }
     VK_CHECK(vkBindBufferMemory(ctx.device, out.buffer, out.memory, 0));
-    if (use == MemoryUse::HostVisible)
+    if (use != MemoryUse::DeviceLocal)
         VK_CHECK(vkMapMemory(ctx.device, out.memory, 0, VK_WHOLE_SIZE, 0, &out.mapped));
+    out.hostCoherent = coherent;
+    out.hostReadback = use == MemoryUse::HostReadback;
     // The descriptor range must not exceed the buffer's own size (VUID-VkDescriptorBufferInfo-range-00342,
     // seen on NVIDIA where req.size is padded); the tracker counts the padded allocation.
     out.size = size;
@@ -124,8 +143,18 @@ void destroyBuffer(const Context& ctx, MemoryTracker& tracker, Buffer& buffer)
 {
     if (buffer.buffer)
         vkDestroyBuffer(ctx.device, buffer.buffer, nullptr);
-    release(ctx, tracker, buffer.memory, buffer.allocationBytes, buffer.name);
+    release(ctx, tracker, buffer.memory, buffer.allocationBytes, buffer.name, buffer.hostReadback);
     buffer = Buffer{};
+}
+
+void invalidateForHost(const Context& ctx, const Buffer& buffer)
+{
+    if (buffer.hostCoherent || !buffer.memory)
+        return;
+    VkMappedMemoryRange range = {VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
+    range.memory = buffer.memory;
+    range.size = VK_WHOLE_SIZE;
+    VK_CHECK(vkInvalidateMappedMemoryRanges(ctx.device, 1, &range));
 }
 
 SkyStatus createImage(const Context& ctx, MemoryTracker& tracker, Image& out, const ImageDesc& desc, const char* name)

@@ -22,6 +22,7 @@ struct MemoryTracker
     std::map<std::string, VkDeviceSize> liveBytes;
     VkDeviceSize totalBytes = 0;
     VkDeviceSize peakBytes = 0;
+    VkDeviceSize hostReadbackBytes = 0;  ///< MemoryUse::HostReadback buffers (system RAM), not in totalBytes
 };
 
 struct Buffer
@@ -29,6 +30,8 @@ struct Buffer
     VkBuffer buffer = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
     void* mapped = nullptr;  ///< non-null for host-visible buffers (persistently mapped)
+    bool hostCoherent = true;  ///< false: the CPU must invalidate before it reads (invalidateForHost)
+    bool hostReadback = false; ///< made with MemoryUse::HostReadback (counted in hostReadbackBytes)
     VkDeviceSize size = 0;             ///< bytes asked for: the range a descriptor of the whole buffer covers
     VkDeviceSize allocationBytes = 0;  ///< bytes of device memory behind it (size rounded up by the driver)
     std::string name;
@@ -50,13 +53,20 @@ struct Image
 enum class MemoryUse
 {
     DeviceLocal,   ///< GPU only
-    HostVisible,   ///< mapped, coherent: uniforms, staging and readback
+    HostVisible,   ///< mapped, coherent: uniforms, staging and one-shot readback
+    /// Mapped and cached for the CPU (HOST_CACHED where the device has it, else coherent): the frame's
+    /// persistent readback buffers. On NVIDIA host-visible memory without HOST_CACHED is read uncached, at
+    /// tens of MB/s. Counted apart from device memory (MemoryTracker::hostReadbackBytes): it is system RAM.
+    HostReadback,
 };
 
 /// Creates a buffer. On failure returns the error and leaves `out` empty.
 SkyStatus createBuffer(const Context& ctx, MemoryTracker& tracker, Buffer& out, VkDeviceSize size,
                        VkBufferUsageFlags usage, MemoryUse use, const char* name);
 void destroyBuffer(const Context& ctx, MemoryTracker& tracker, Buffer& buffer);
+/// Makes the GPU's writes to a mapped buffer visible to the CPU (a no-op for coherent memory). Call after the
+/// fence of the work that wrote it.
+void invalidateForHost(const Context& ctx, const Buffer& buffer);
 
 struct ImageDesc
 {

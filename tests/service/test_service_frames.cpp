@@ -5,7 +5,10 @@
 #include "skyservice/output/image_files.h"
 #include "tests/service/service_harness.h"
 
+#include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
+
+#include <cstring>
 
 #include <atomic>
 #include <csignal>
@@ -35,6 +38,8 @@ SkyView testView()
     v.height = 36;
     return v;
 }
+
+float halfToFloat(uint16_t h) { return glm::unpackHalf1x16(h); }
 
 /// Waits for a frame newer than `after` and returns its id (0 on failure).
 uint64_t nextFrame(SkyClient* c, uint64_t after, int timeoutMs = 20000)
@@ -117,6 +122,70 @@ TEST(ServiceFrames, MatchesOneShotRender)
         maxDiff = std::max(maxDiff, diff);
     }
     EXPECT_EQ(differing, 0u) << "largest difference " << maxDiff << " of 255";
+    EXPECT_EQ(d.stop(), 0);
+}
+
+// The compositing layers a subscriber asks for (issue 20) are those of the one-shot render of the same
+// view: the clouds layer's alpha is the EXR's A (1 - transmittance) and the depth layer its Z, bit for bit;
+// the sky layer is the sky alone (where no cloud is, the display is the sky layer tone-mapped, so it is
+// not black). A subscriber without layers gets frames without them.
+TEST(ServiceFrames, LayersMatchTheOneShotRendersExr)
+{
+    TempDir tmp;
+    Daemon d;
+    std::string error;
+    ASSERT_TRUE(d.start(tmp.path, DaemonConfig{}, error)) << error;
+    SkyClient* c = nullptr;
+    ASSERT_EQ(sky_client_connect(d.socketPath.c_str(), "layers", &c), SKY_OK);
+    SkyView v = testView();
+    ASSERT_EQ(sky_client_set_view(c, &v), SKY_OK) << sky_client_last_error(c);
+    ASSERT_EQ(sky_client_set_time(c, 1782043200.0 + 3600.0 * 4, 0.0), SKY_OK);  // 2026-06-21T16:00:00Z
+    EXPECT_EQ(sky_client_subscribe_shm_layers(c, 1u << 7), SKY_ERR_ARGUMENT);
+    ASSERT_EQ(sky_client_subscribe_shm_layers(c, (1u << SKY_LAYER_SKY) | (1u << SKY_LAYER_CLOUDS) |
+                                                     (1u << SKY_LAYER_DEPTH)),
+              SKY_OK)
+        << sky_client_last_error(c);
+    uint64_t id = 0;
+    ASSERT_EQ(sky_client_request_frame(c, &id), SKY_OK);
+    ASSERT_EQ(sky_client_wait_frame(c, id - 1, 30000), SKY_OK) << sky_client_last_error(c);
+    SkyFrame f{};
+    ASSERT_EQ(sky_client_acquire_frame(c, &f), SKY_OK);
+    const SkyFrameLayer& clouds = f.layers[SKY_LAYER_CLOUDS];
+    const SkyFrameLayer& depth = f.layers[SKY_LAYER_DEPTH];
+    const SkyFrameLayer& sky = f.layers[SKY_LAYER_SKY];
+    ASSERT_EQ(clouds.format, SKY_FORMAT_RGBA16F_PREMULTIPLIED);
+    ASSERT_EQ(depth.format, SKY_FORMAT_R32F_METRES);
+    ASSERT_EQ(sky.format, SKY_FORMAT_RGBA16F_LINEAR);
+    ASSERT_EQ(f.layers[SKY_LAYER_DISPLAY].pixels, f.pixels);
+    const size_t n = size_t(f.width) * f.height;
+    std::vector<float> alpha(n), z(n), skyRed(n);
+    for (uint32_t y = 0; y < f.height; ++y)
+        for (uint32_t x = 0; x < f.width; ++x)
+        {
+            uint16_t a = 0, r = 0;
+            std::memcpy(&a, clouds.pixels + size_t(y) * clouds.row_bytes + x * 8 + 6, 2);
+            std::memcpy(&r, sky.pixels + size_t(y) * sky.row_bytes + x * 8, 2);
+            alpha[size_t(y) * f.width + x] = halfToFloat(a);
+            skyRed[size_t(y) * f.width + x] = halfToFloat(r);
+            std::memcpy(&z[size_t(y) * f.width + x], depth.pixels + size_t(y) * depth.row_bytes + x * 4, 4);
+        }
+    ASSERT_EQ(sky_client_release_frame(c, &f), SKY_OK);
+    sky_client_close(c);
+
+    sky::ImageRgba8 ref;
+    ASSERT_TRUE(renderOneShotOfTestView(tmp.path, "", ref, error)) << error;
+    sky::ExrImage exr;
+    ASSERT_TRUE(sky::readExr(tmp.path + "/ref.exr", exr, error)) << error;
+    ASSERT_EQ(exr.channels["A"].values.size(), n);
+    size_t cloudy = 0;
+    for (size_t i = 0; i < n; ++i)
+    {
+        ASSERT_EQ(alpha[i], exr.channels["A"].values[i]) << "alpha of pixel " << i;
+        ASSERT_EQ(z[i], exr.channels["Z"].values[i]) << "depth of pixel " << i;
+        EXPECT_GT(skyRed[i], 0.0f) << "sky of pixel " << i;
+        cloudy += alpha[i] > 0.5f;
+    }
+    EXPECT_GT(cloudy, 0u) << "the view should hold cloud";
     EXPECT_EQ(d.stop(), 0);
 }
 
