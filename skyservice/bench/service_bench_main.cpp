@@ -124,8 +124,8 @@ std::string makeTempDir()
     return mkdtemp(buffer.data()) ? std::string(buffer.data()) : std::string();
 }
 
-/// One scene: its daemon, its weather, and every size and transport. Appends the daemon's log tail to
-/// `error` when the daemon is gone.
+/// One scene: its daemon, its weather, and every size and transport. On failure `error` ends with the
+/// daemon's log tail.
 bool runScene(const ServiceBenchOptions& o, const std::vector<Size>& sizes, const std::vector<std::string>& transports,
               const BenchScene& scene, const std::string& dir, ServiceBenchRun& run, ServiceSceneResult& out,
               std::string& error)
@@ -152,10 +152,12 @@ bool runScene(const ServiceBenchOptions& o, const std::vector<Size>& sizes, cons
     ServiceDaemon daemon;
     if (!daemon.start(config, kDaemonStartTimeoutS, error))
         return false;
-    auto daemonGone = [&](const std::string& what)
+    auto failWithLog = [&](const std::string& what)
     {
         error = what + ": " + error;
-        if (!daemon.running())
+        if (daemon.running())
+            error += "\nthe daemon is still running; its log ends:\n" + daemon.logTail();
+        else
         {
             std::string stopError;
             daemon.stop(kDaemonStopTimeoutS, stopError);
@@ -169,12 +171,12 @@ bool runScene(const ServiceBenchOptions& o, const std::vector<Size>& sizes, cons
         nlohmann::json status;
         if (!c.open(daemon.socketPath(), "sky-service-bench-setup", error) ||
             !readServiceStatus(c.get(), status, error))
-            return daemonGone("the daemon's status");
+            return failWithLog("the daemon's status");
         run.deviceName = status.value("device", std::string());
         run.driver = status.value("driver", std::string());
     }
     if (!prepareSceneWeather(daemon.socketPath(), scene, dir, o.rateHz <= 0, kWeatherTimeoutS, error))
-        return daemonGone("the scene's time and weather");
+        return failWithLog("the scene's time and weather");
 
     out.smClockStartMhz = gpuSmClockMhz();
     for (const Size& size : sizes)
@@ -193,7 +195,7 @@ bool runScene(const ServiceBenchOptions& o, const std::vector<Size>& sizes, cons
             s.onRequest = o.rateHz <= 0;
             ServiceRunResult r;
             if (!runServiceClient(s, r, error))
-                return daemonGone(std::to_string(size.width) + "x" + std::to_string(size.height) + " " + transport);
+                return failWithLog(std::to_string(size.width) + "x" + std::to_string(size.height) + " " + transport);
             std::fprintf(stderr, "sky-service-bench: %-19s %5ux%-5u %-6s %u frames, %.2f per second\n",
                          scene.name.c_str(), size.width, size.height, transport.c_str(), r.frames, r.deliveredFps);
             out.runs.push_back(std::move(r));
