@@ -36,3 +36,35 @@ set_tests_properties(bench.clear_small_validated PROPERTIES TIMEOUT 120)
 add_test(NAME bench.clear_json COMMAND ${CMAKE_COMMAND} -E cat ${SKY_BENCH_TMP}/clear.json)
 set_tests_properties(bench.clear_json PROPERTIES DEPENDS bench.clear_small_validated
                      PASS_REGULAR_EXPRESSION "\"gpuFramesPerCall\": 2.*\"height\": 18.*\"totalBytes\".*\"name\": \"clear\"")
+
+# sky-service-bench (issue 20): the real daemon and libskyclient clients on a tiny view. One synthetic scene
+# (its weather goes through a snapshot file and load_weather), both transports, a few frames: the table's
+# zero-copy row has its cells and no torn frame, and the JSON (checked by bench/check_service_json.cmake) counts every frame,
+# delivers some per second, and orders its latencies. Timings themselves are never asserted.
+if(TARGET sky-service-bench)
+    set(SKY_SERVICE_BENCH_BIN $<TARGET_FILE:sky-service-bench>)
+    add_test(NAME bench.service_small COMMAND ${SKY_BENCH_EXPECT} 0
+             "^clear +160x90 +vulkan +[0-9.]+ +[0-9.]+/[0-9.]+/[0-9.]+ +[0-9.]+ +[0-9.]+ +0/0 "
+             ${SKY_SERVICE_BENCH_BIN} --scene clear --size 160x90 --frames 4 --warmup 2 --transport both
+             --json ${SKY_BENCH_TMP}/service.json)
+    set_tests_properties(bench.service_small PROPERTIES TIMEOUT 180)
+    add_test(NAME bench.service_json COMMAND ${CMAKE_COMMAND} -DJSON=${SKY_BENCH_TMP}/service.json -DFRAMES=4
+             -DTRANSPORTS=shm,vulkan -P ${CMAKE_CURRENT_LIST_DIR}/bench/check_service_json.cmake)
+    set_tests_properties(bench.service_json PROPERTIES DEPENDS bench.service_small)
+    # Layers other than display are refused until subscriptions carry them; a malformed size is a usage
+    # error that names the argument. Neither starts a daemon.
+    add_test(NAME bench.service_layers_not_yet COMMAND ${SKY_BENCH_EXPECT} 2 "layer \"depth\" is not served yet"
+             ${SKY_SERVICE_BENCH_BIN} --scene clear --layers display,depth)
+    set_tests_properties(bench.service_layers_not_yet PROPERTIES LABELS cpu)
+    add_test(NAME bench.service_bad_size COMMAND ${SKY_BENCH_EXPECT} 2 "--size 1920by1080: expected WIDTHxHEIGHT"
+             ${SKY_SERVICE_BENCH_BIN} --size 1920by1080)
+    set_tests_properties(bench.service_bad_size PROPERTIES LABELS cpu)
+    # A daemon that cannot start: the message shows the end of its log ("  | " lines), which names the device.
+    add_test(NAME bench.service_daemon_fails COMMAND ${SKY_BENCH_EXPECT} 1
+             "^  \\| .*no-such-gpu: no such device"
+             ${SKY_SERVICE_BENCH_BIN} --scene clear --size 16x16 --frames 1 --device no-such-gpu)
+    set_tests_properties(bench.service_daemon_fails PROPERTIES TIMEOUT 120)
+    add_test(NAME bench.service_bad_transport COMMAND ${SKY_BENCH_EXPECT} 2 "transport"
+             ${SKY_SERVICE_BENCH_BIN} --transport pigeon)
+    set_tests_properties(bench.service_bad_transport PROPERTIES LABELS cpu)
+endif()

@@ -32,11 +32,6 @@ std::vector<std::string> passColumns(const BenchRun& run)
     return ordered;
 }
 
-nlohmann::json summaryJson(const BenchSummary& s)
-{
-    return {{"count", s.count}, {"median", s.median}, {"p95", s.p95}, {"mean", s.mean}, {"min", s.min}, {"max", s.max}};
-}
-
 double mib(uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 
 }  // namespace
@@ -50,12 +45,32 @@ BenchSummary summarizeSamples(std::vector<double> samples)
     size_t n = samples.size();
     s.count = n;
     s.median = n % 2 ? samples[n / 2] : 0.5 * (samples[n / 2 - 1] + samples[n / 2]);
-    size_t rank = size_t(std::ceil(0.95 * double(n)));
-    s.p95 = samples[std::clamp<size_t>(rank, 1, n) - 1];
+    auto nearestRank = [&](double q)
+    { return samples[std::clamp<size_t>(size_t(std::ceil(q * double(n))), 1, n) - 1]; };
+    s.p95 = nearestRank(0.95);
+    s.p99 = nearestRank(0.99);
     s.mean = std::accumulate(samples.begin(), samples.end(), 0.0) / double(n);
     s.min = samples.front();
     s.max = samples.back();
     return s;
+}
+
+nlohmann::json benchSummaryJson(const BenchSummary& s)
+{
+    return {{"count", s.count}, {"median", s.median}, {"p95", s.p95}, {"p99", s.p99},
+            {"mean", s.mean},   {"min", s.min},       {"max", s.max}};
+}
+
+std::string summaryCell(const BenchSummary& s, int decimals, bool withP99)
+{
+    if (s.count == 0)
+        return "-";
+    char cell[64];
+    if (withP99)
+        std::snprintf(cell, sizeof cell, "%.*f/%.*f/%.*f", decimals, s.median, decimals, s.p95, decimals, s.p99);
+    else
+        std::snprintf(cell, sizeof cell, "%.*f/%.*f", decimals, s.median, decimals, s.p95);
+    return cell;
 }
 
 nlohmann::json benchToJson(const BenchRun& run)
@@ -91,7 +106,7 @@ nlohmann::json benchToJson(const BenchRun& run)
     {
         nlohmann::json passes = nlohmann::json::object();
         for (const auto& [pass, samples] : s.gpuMs)
-            passes[pass] = summaryJson(summarizeSamples(samples));
+            passes[pass] = benchSummaryJson(summarizeSamples(samples));
         const EyePose& p = s.scene.pose;
         scenes.push_back({{"name", s.scene.name},
                           {"description", s.scene.description},
@@ -112,8 +127,8 @@ nlohmann::json benchToJson(const BenchRun& run)
                           {"marchBlockReason", s.marchBlockReason},
                           {"marchRowLookups", s.marchRowLookups},
                           {"gpuMs", passes},
-                          {"wallMs", summaryJson(summarizeSamples(s.wallMs))},
-                          {"cpuSetupMs", summaryJson(summarizeSamples(s.cpuSetupMs))}});
+                          {"wallMs", benchSummaryJson(summarizeSamples(s.wallMs))},
+                          {"cpuSetupMs", benchSummaryJson(summarizeSamples(s.cpuSetupMs))}});
     }
     doc["scenes"] = scenes;
     return doc;
@@ -144,15 +159,10 @@ void printBenchTable(std::FILE* out, const BenchRun& run)
                 std::fprintf(out, " %15s", "-");
                 continue;
             }
-            BenchSummary sum = summarizeSamples(it->second);
-            char cell[32];
-            std::snprintf(cell, sizeof cell, "%.3f/%.3f", sum.median, sum.p95);
-            std::fprintf(out, " %15s", cell);
+            std::fprintf(out, " %15s", summaryCell(summarizeSamples(it->second), 3).c_str());
         }
-        BenchSummary wall = summarizeSamples(s.wallMs);
-        char cell[32];
-        std::snprintf(cell, sizeof cell, "%.2f/%.2f", wall.median, wall.p95);
-        std::fprintf(out, " %15s %9.2f %5.1f%s\n", cell, summarizeSamples(s.cpuSetupMs).median,
+        std::fprintf(out, " %15s %9.2f %5.1f%s\n", summaryCell(summarizeSamples(s.wallMs), 2).c_str(),
+                     summarizeSamples(s.cpuSetupMs).median,
                      100.0 * s.cloudFraction, s.allFinite ? "" : "  NON-FINITE");
     }
     std::fprintf(out, "device memory at %ux%u: %.2f MiB live (%.2f MB), peak %.2f MiB with staging\n", run.width,

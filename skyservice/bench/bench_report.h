@@ -20,6 +20,7 @@ struct BenchSummary
     size_t count = 0;
     double median = 0;  ///< middle value (mean of the two middle values for an even count)
     double p95 = 0;     ///< 95th percentile, nearest rank: the ceil(0.95 n)-th smallest value
+    double p99 = 0;     ///< 99th percentile, nearest rank: the ceil(0.99 n)-th smallest value
     double mean = 0;
     double min = 0;
     double max = 0;
@@ -30,6 +31,19 @@ struct BenchSummary
  * @return their summary; all zero when samples is empty.
  **********************************************************************/
 BenchSummary summarizeSamples(std::vector<double> samples);
+
+/// A summary as JSON: count, median, p95, p99, mean, min, max.
+nlohmann::json benchSummaryJson(const BenchSummary& s);
+
+/**
+ * One table cell: "median/p95" (or "median/p95/p99"), each with `decimals` digits after the point.
+ *
+ * @param[in] s the summary.
+ * @param[in] decimals digits after the decimal point.
+ * @param[in] withP99 append the 99th percentile.
+ * @return the cell text; "-" when the summary has no samples.
+ **********************************************************************/
+std::string summaryCell(const BenchSummary& s, int decimals, bool withP99 = false);
 
 /// Timings of one scene: one sample per timed frame.
 struct BenchSceneResult

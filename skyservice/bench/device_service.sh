@@ -1,0 +1,106 @@
+#!/bin/bash
+# sky-service-bench on the GPU machine (issue 20; skyservice/bench/README-service.md). Two steps:
+#   here, on the dev machine, from the repo root (needs a configured build folder, default build-bench):
+#     bash skyservice/bench/device_service.sh prepare [BUILD]
+#   there, through the device tool with carry [".gl", ".gpu"], from the repo root:
+#     bash skyservice/bench/device_service.sh
+# prepare makes .gl/ and .gpu/ with device_prepare.sh when they are absent (loader, headers, build
+# dependencies as .debs, the baseline), adds toml++ (the daemon's config reader; header-only), and
+# refreshes .gpu/spirv from BUILD. On the device it builds skyservice (the daemon), sky-service-bench and
+# sky-bench without the ingest decoders (-DSKY_BUILD_INGEST=OFF: the device has no ecCodes/netCDF; the
+# bench writes its synthetic weather with sky_weather, which needs neither), then runs the plan below
+# and writes service-*.json, bench-reprojected-*.json, clocks.csv and service-log.txt to $OUT.
+# Knobs (environment): SKY_SVC_RUNS (which runs, default all of them, in this order:
+# "1080p 1080p-shadow 4k 640 rate1000 sky-bench baseline"), SKY_SVC_FRAMES (timed frames per scene, size and
+# transport; default 300), SKY_SVC_SCENES (default all), SKY_SVC_LIMIT_S (each run's time limit, default
+# 150 s), SKY_SVC_BUILD=0 (reuse /tmp/build from an earlier call on the same warm machine). A device call
+# lasts at most 10 minutes: with a slow frame path, lower SKY_SVC_FRAMES or split SKY_SVC_RUNS over calls.
+set -u
+if [ "${1:-}" = prepare ]; then
+  set -e
+  BUILD=${2:-build-bench}
+  [ -d .gpu/debs ] && [ -d .gl ] || bash skyservice/bench/device_prepare.sh "$BUILD"
+  (cd .gpu/debs && apt-get download libtomlplusplus-dev)
+  cmake --build "$BUILD" --target sky_shaders -j2
+  rm -rf .gpu/spirv && cp -r "$BUILD/spirv" .gpu/spirv
+  du -sh .gl .gpu
+  exit 0
+fi
+
+ROOT=$PWD; G=${SKY_BENCH_GPU_DIR:-$ROOT/.gpu}; GL=${SKY_BENCH_GL_DIR:-$ROOT/.gl}; P=/tmp/deps
+exec > >(tee "$OUT/service-log.txt") 2>&1
+T0=$(date +%s); el() { echo "[t+$(( $(date +%s) - T0 ))s] $*"; }
+for f in "$GL"/*.deb; do dpkg -x "$f" /; done; ldconfig
+mkdir -p $P; for f in "$G"/debs/*.deb; do dpkg -x "$f" $P; done
+export LD_LIBRARY_PATH=$P/usr/lib/x86_64-linux-gnu
+export SKY_SPIRV_DIR=$G/spirv
+el "unpacked"; nproc
+nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm,power.draw,temperature.gpu --format=csv
+
+if [ "${SKY_SVC_BUILD:-1}" != 0 ]; then
+  if timeout 60 cmake -S "$ROOT" -B /tmp/build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKY_BUILD_TESTS=OFF \
+       -DSKY_BUILD_INGEST=OFF -DSKY_PREBUILT_SPIRV_DIR=$G/spirv -DVulkan_INCLUDE_DIR=$G/include \
+       -DVulkan_LIBRARY=/usr/lib/x86_64-linux-gnu/libvulkan.so.1 -DCMAKE_PREFIX_PATH=$P/usr \
+       -DCMAKE_MODULE_PATH=$P/usr/share/cmake/geographiclib "-DCMAKE_CXX_FLAGS=-isystem $P/usr/include" \
+       -DPKG_CONFIG_EXECUTABLE=$P/usr/bin/pkgconf -DCMAKE_POLICY_VERSION_MINIMUM=3.5 > /tmp/cfg.log 2>&1 &&
+     timeout 300 cmake --build /tmp/build --target skyservice sky-service-bench sky-bench -j16 \
+       > /tmp/build.log 2>&1; then
+    el "built skyservice, sky-service-bench and sky-bench"
+  else
+    el "device build FAILED"; tail -30 /tmp/cfg.log; tail -40 /tmp/build.log; exit 1
+  fi
+fi
+SB=/tmp/build/skyservice/sky-service-bench; BENCH=/tmp/build/skyservice/sky-bench
+
+# Does the loader find the NVIDIA driver? If not, point it at the ICD (GPU.md).
+probe() { timeout 120 $SB --scene clear --size 64x64 --frames 2 --warmup 1 --transport both --device NVIDIA \
+  > /tmp/probe.log 2>&1; }
+if ! probe; then
+  cat /tmp/probe.log; export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+  el "retrying with VK_DRIVER_FILES"; probe || { cat /tmp/probe.log; el "no NVIDIA device: stopping"; exit 1; }
+fi
+cat /tmp/probe.log
+
+Q=timestamp,clocks.sm,utilization.gpu,power.draw,clocks_event_reasons.active
+nvidia-smi --query-gpu=$Q --format=csv -c 1 > /dev/null 2>&1 || Q=timestamp,clocks.sm,utilization.gpu,power.draw
+nvidia-smi --query-gpu=$Q --format=csv,noheader -lms 200 > "$OUT/clocks.csv" 2>/dev/null &
+CLK=$!
+
+FRAMES=${SKY_SVC_FRAMES:-300}; SCENES=${SKY_SVC_SCENES:-all}; LIMIT=${SKY_SVC_LIMIT_S:-150}
+svc() {  # LABEL OPTIONS...
+  local label=$1; shift
+  el "sky-service-bench $label: $*"
+  timeout "$LIMIT" $SB --scene "$SCENES" --frames "$FRAMES" --warmup 30 --device NVIDIA \
+    --json "$OUT/service-$label.json" "$@"
+  el "sky-service-bench $label rc=$?"
+}
+for run in ${SKY_SVC_RUNS:-1080p 1080p-shadow 4k 640 rate1000 sky-bench baseline}; do
+  case $run in
+    1080p) svc 1920x1080 --size 1920x1080 --transport both ;;
+    1080p-shadow) svc 1920x1080-shadow1024 --size 1920x1080 --shadow-map 1024 ;;
+    4k) svc 3840x2160 --size 3840x2160 ;;
+    640) svc 640x360 --size 640x360 ;;
+    rate1000) svc 1920x1080-rate1000 --size 1920x1080 --rate-hz 1000 ;;
+    sky-bench)  # the renderer alone: same scenes, size, eye speed and quality ("medium" = 96 steps, 5 light
+                # samples); what the service adds is the difference
+      el "sky-bench reprojected 1920x1080"
+      timeout "$LIMIT" $BENCH --scene "$SCENES" --width 1920 --height 1080 --frames 100 --warmup 20 \
+        --mode reprojected --speed 250 --steps 96 --light-samples 5 --device NVIDIA \
+        --json "$OUT/bench-reprojected-1920x1080.json" | grep -v "MiB$"
+      el "sky-bench rc=${PIPESTATUS[0]}" ;;
+    baseline)  # GPU.md's yardstick at the same size, in the same call
+      if timeout 60 cmake -S $G/baseline -B /tmp/bb -DCMAKE_BUILD_TYPE=Release \
+           -DCLOUDPROBE_SPV=$G/baseline/cloud.comp.spv -DVulkan_INCLUDE_DIR=$G/include \
+           -DVulkan_LIBRARY=/usr/lib/x86_64-linux-gnu/libvulkan.so.1 > /tmp/bcfg.log 2>&1 &&
+         timeout 60 cmake --build /tmp/bb -j16 > /tmp/bbuild.log 2>&1; then
+        el "baseline 1920x1080"
+        timeout 120 /tmp/bb/cloudprobe --spv $G/baseline/cloud.comp.spv --width 1920 --height 1080 --frames 100 \
+          --out /tmp/base-1920x1080 2>&1 | tee "$OUT/baseline.txt" | grep -i "using device\|FULL\|1/16\|timestamp"
+      else
+        el "baseline build FAILED"; tail -20 /tmp/bcfg.log /tmp/bbuild.log
+      fi ;;
+    *) el "unknown run $run (SKY_SVC_RUNS)" ;;
+  esac
+done
+kill $CLK
+el "done"
