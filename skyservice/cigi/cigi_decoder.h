@@ -43,7 +43,7 @@ struct DecodeCounters
     uint64_t datagrams = 0;          ///< datagrams given to decode()
     uint64_t datagramsDropped = 0;   ///< of which nothing was applied (bad header)
     uint64_t packetsDecoded = 0;     ///< good packets handed on (IG Control included)
-    uint64_t packetsIgnored = 0;     ///< well-formed packets this IG does not use (e.g. Component Control, user-defined)
+    uint64_t packetsIgnored = 0;     ///< packets this IG does not use (Component Control, user-defined, ...)
     std::array<uint64_t, kDecodeErrorKindCount> errors{};  ///< indexed by DecodeErrorKind
 
     uint64_t error(DecodeErrorKind kind) const { return errors[static_cast<size_t>(kind)]; }

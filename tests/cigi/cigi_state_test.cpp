@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <string>
+
 namespace sky::cigi
 {
 namespace
@@ -251,8 +254,13 @@ TEST_P(CigiStateScript, HostSequenceDrivesTheState)
     EXPECT_EQ(state.regions.count(4), 0u);
 }
 
+std::string byteOrderName(const ::testing::TestParamInfo<ByteOrder>& info)
+{
+    return info.param == ByteOrder::Big ? "Big" : "Little";
+}
+
 INSTANTIATE_TEST_SUITE_P(ByteOrders, CigiStateScript, ::testing::Values(ByteOrder::Big, ByteOrder::Little),
-                         [](const ::testing::TestParamInfo<ByteOrder>& p) { return p.param == ByteOrder::Big ? "Big" : "Little"; });
+                         byteOrderName);
 
 TEST(CigiState, DateTimeNotValidLeavesTheTime)
 {
