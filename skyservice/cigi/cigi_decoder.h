@@ -23,7 +23,7 @@ enum class DecodeErrorKind : uint8_t
     ShortDatagram,     ///< fewer bytes than an IG Control: the datagram is dropped
     MissingIgControl,  ///< the first packet is not a 24-byte IG Control: dropped
     BadMagic,          ///< IG Control's byte-swap magic is neither 0x8000 nor 0x0080: dropped
-    BadVersion,        ///< IG Control is not CIGI 3.2/3.3: dropped
+    BadVersion,        ///< IG Control's major version is not 3: dropped
     BadSize,           ///< a packet's size field is < 2: nothing after it can be found, the rest is dropped
     Truncated,         ///< a packet's size runs past the datagram's end: the rest is dropped
     SizeMismatch,      ///< a known packet whose size field is not its fixed size: that packet is skipped

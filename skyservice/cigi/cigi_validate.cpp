@@ -72,9 +72,9 @@ unsigned daysInMonth(unsigned month, unsigned year)
 std::string validate(const IgControl& p)
 {
     Checker c("IG Control");
+    // The minor version is not checked: 3.2 and 3.3 share this 24-byte layout (3.0/3.1 hosts send a 16-byte IG
+    // Control, refused by its size), and a host that leaves the nibble at 0 still sends the 3.2+ packets.
     c.require(p.majorVersion == kCigiMajorVersion, "CIGI Version", p.majorVersion, "is not 3");
-    // Minor versions 2 and 3 share this 24-byte layout; 3.0/3.1 hosts send a 16-byte IG Control.
-    c.require(p.minorVersion >= 2, "Minor Version", p.minorVersion, "is older than 3.2 (different layout)");
     return c.result();
 }
 

@@ -217,6 +217,21 @@ TEST(CigiDecoder, PacketsThisIgDoesNotUseAreSkippedWithoutError)
     EXPECT_EQ(decoder.counters().packetsIgnored, 2u);
 }
 
+TEST(CigiDecoder, MinorVersionIsNotCheckedButTheIgControlSizeIs)
+{
+    IgControl ig = sampleIgControl();
+    ig.minorVersion = 0;  // a host that leaves the nibble unset still sends the 24-byte 3.2+ layout
+    std::vector<uint8_t> d;
+    encode(ig, ByteOrder::Big, d);
+    Decoder decoder;
+    EXPECT_TRUE(decoder.decode(d.data(), d.size()).accepted);
+    d[1] = 16;  // a CIGI 3.0/3.1 IG Control is 16 bytes: another layout, refused
+    const DecodeResult old = decoder.decode(d.data(), d.size());
+    EXPECT_FALSE(old.accepted);
+    ASSERT_EQ(old.errors.size(), 1u);
+    EXPECT_EQ(old.errors[0].kind, DecodeErrorKind::MissingIgControl);
+}
+
 TEST(CigiDecoder, EveryTruncationOfAGoodDatagramIsSurvived)
 {
     // Each prefix of a full datagram: no crash (run under the sanitizers), and whole packets before the cut
