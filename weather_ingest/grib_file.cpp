@@ -119,8 +119,8 @@ std::string describeGrid(const KeyReader& k, const std::string& gridType)
         d += format(", standard parallels %g/%g, LoV %g", k.getDoubleOr("Latin1InDegrees"),
                     k.getDoubleOr("Latin2InDegrees"), k.getDoubleOr("LoVInDegrees"));
     else if (gridType == "polar_stereographic")
-        d += format(", LoV %g, %s pole", k.getDoubleOr("orientationOfTheGridInDegrees")) +
-             (k.getLong("southPoleOnProjectionPlane", 0) != 0 ? "south" : "north");
+        d += format(", LoV %g, ", k.getDoubleOr("orientationOfTheGridInDegrees")) +
+             (k.getLong("southPoleOnProjectionPlane", 0) != 0 ? "south" : "north") + " pole";
     else if (gridType.find("rotated") != std::string::npos)
         d += format(", south pole of rotation %g, %g", k.getDoubleOr("latitudeOfSouthernPoleInDegrees"),
                     k.getDoubleOr("longitudeOfSouthernPoleInDegrees"));
@@ -370,6 +370,22 @@ GribGridPoints GribMessage::locatePoints(size_t maxCells) const
         throw IngestError(IngestErrorKind::TooLarge, file_, where, field,
                           grid + ": " + std::to_string(dataPoints) + " points is too few or exceeds " +
                               std::to_string(maxCells));
+    if (info_.gridType == "lambert" || info_.gridType == "lambert_lam")
+    {
+        // Cone constant n (Snyder, "Map Projections: A Working Manual", eq. 15-3); n = 0 (parallels
+        // symmetric about the equator, or on it) is a cylinder, not a cone.
+        constexpr double kPi = 3.14159265358979323846;
+        constexpr double kRad = kPi / 180.0;
+        const double p1 = k.getDoubleOr("Latin1InDegrees") * kRad, p2 = k.getDoubleOr("Latin2InDegrees") * kRad;
+        const double n = std::abs(p1 - p2) < 1e-9
+                             ? std::sin(p1)
+                             : std::log(std::cos(p1) / std::cos(p2)) /
+                                   std::log(std::tan(0.25 * kPi + 0.5 * p2) / std::tan(0.25 * kPi + 0.5 * p1));
+        if (!std::isfinite(n) || std::abs(n) < 1e-6 || std::abs(n) > 1.0 + 1e-9)
+            throw unsupported("degenerate Lambert cone: standard parallels " + std::to_string(p1 / kRad) + " and " +
+                              std::to_string(p2 / kRad) + " give cone constant " + std::to_string(n) +
+                              " (they must lie in one hemisphere, off the equator)");
+    }
     // ecCodes sizes its iterator from these keys without checking them against each other.
     if (k.has("pl") && info_.gridType.rfind("reduced", 0) == 0)
     {
@@ -387,9 +403,14 @@ GribGridPoints GribMessage::locatePoints(size_t maxCells) const
             throw corrupt("inconsistent sizes: the " + std::to_string(rows) + " row lengths (pl) add up to " +
                           std::to_string(sum) + " points, the message declares " + std::to_string(dataPoints));
     }
+    else if (!k.has("Ni") || !k.has("Nj") || k.missing("Ni") || k.missing("Nj"))
+    {
+        throw unsupported("ecCodes cannot locate its points (no rows and columns: spectral or unstructured); only "
+                          "grids whose points ecCodes can iterate are read");
+    }
     else
     {
-        const long ni = k.missing("Ni") ? -1 : k.getLong("Ni", -1);
+        const long ni = k.getLong("Ni", -1);
         const long nj = k.missing("Nj") ? -1 : k.getLong("Nj", -1);
         if (ni < 2 || nj < 2 || double(ni) * double(nj) != double(dataPoints))
             throw corrupt("inconsistent sizes: " + std::to_string(ni) + " x " + std::to_string(nj) +
@@ -401,22 +422,6 @@ GribGridPoints GribMessage::locatePoints(size_t maxCells) const
     k.check(codes_get_size(h, "values", &count), "values");
     if (count != size_t(dataPoints))
         throw corrupt(std::to_string(count) + " values for " + std::to_string(dataPoints) + " data points");
-    if (info_.gridType == "lambert" || info_.gridType == "lambert_lam")
-    {
-        // Cone constant n (Snyder, "Map Projections: A Working Manual", eq. 15-3); n = 0 (parallels
-        // symmetric about the equator, or on it) is a cylinder, not a cone.
-        constexpr double kPi = 3.14159265358979323846;
-        constexpr double kRad = kPi / 180.0;
-        const double p1 = k.getDoubleOr("Latin1InDegrees") * kRad, p2 = k.getDoubleOr("Latin2InDegrees") * kRad;
-        const double n = std::abs(p1 - p2) < 1e-9
-                             ? std::sin(p1)
-                             : std::log(std::cos(p1) / std::cos(p2)) /
-                                   std::log(std::tan(0.25 * kPi + 0.5 * p2) / std::tan(0.25 * kPi + 0.5 * p1));
-        if (!std::isfinite(n) || std::abs(n) < 1e-6 || std::abs(n) > 1.0 + 1e-9)
-            throw unsupported("degenerate Lambert cone: standard parallels " + std::to_string(p1 / kRad) + " and " +
-                              std::to_string(p2 / kRad) + " give cone constant " + std::to_string(n) +
-                              " (they must lie in one hemisphere, off the equator)");
-    }
     p.iScansNegatively = k.getLong("iScansNegatively", 0) != 0;
     p.jPointsAreConsecutive = k.getLong("jPointsAreConsecutive", 0) != 0;
     p.alternativeRowScanning = k.getLong("alternativeRowScanning", 0) != 0;

@@ -5,6 +5,7 @@
 #include "weather_ingest/snapshot_blend.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace sky
@@ -145,7 +146,7 @@ WeatherSnapshot compositeSnapshots(std::vector<WeatherSnapshot> parts, size_t ma
     if (parts.size() == 1)
         return std::move(parts.front());
     std::stable_sort(parts.begin(), parts.end(), [](const WeatherSnapshot& a, const WeatherSnapshot& b) {
-        return std::abs(a.grid.dLatDeg) > std::abs(b.grid.dLatDeg);
+        return std::abs(a.grid.dLatDeg) * a.grid.dLonDeg > std::abs(b.grid.dLatDeg) * b.grid.dLonDeg;
     });
     // The union of the areas; longitudes unwrapped around the coarsest part's first column.
     const double lonRef = parts.front().grid.lon0Deg;
