@@ -27,7 +27,10 @@ Vec3 unitVector(double latDeg, double lonDeg)
     return {cl * std::cos(lonDeg * kRadPerDeg), cl * std::sin(lonDeg * kRadPerDeg), std::sin(latDeg * kRadPerDeg)};
 }
 
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double dot(const Vec3& a, const Vec3& b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 Vec3 cross(const Vec3& a, const Vec3& b)
 {
@@ -94,7 +97,7 @@ struct Gnomonic
         centre = c;
         east = cross(Vec3{0, 0, 1}, c);
         if (!normalise(east))
-            east = {1, 0, 0};  // centred on a pole: any tangent direction will do
+            east = {1, 0, 0}; // centred on a pole: any tangent direction will do
         north = cross(c, east);
         return true;
     }
@@ -127,7 +130,7 @@ bool boundaryEnclosesPole(const std::vector<double>& lon, size_t ny, size_t nx)
     return std::abs(turn) > 180.0;
 }
 
-}  // namespace
+} // namespace
 
 CurvilinearResampler::CurvilinearResampler(const std::vector<float>& latDeg, const std::vector<float>& lonDeg,
                                            size_t ny, size_t nx, size_t maxCells)
@@ -262,7 +265,8 @@ CurvilinearResampler::CurvilinearResampler(const std::vector<float>& latDeg, con
             bool allColumns = false;
             const double cosC = std::cos(0.5 * (latLo + latHi) * kRadPerDeg);
             const double lon00 = lon[k[0]], latC = 0.5 * (latLo + latHi);
-            const auto plane = [&](const Vec3& unit, double pointLat, double pointLon, Point& out) {
+            const auto plane = [&](const Vec3& unit, double pointLat, double pointLon, Point& out)
+            {
                 if (gnomonic)
                     return g.project(unit, out);
                 out = {wrapLongitudeDeg(pointLon - lon00) * cosC, pointLat - latC};
@@ -291,7 +295,8 @@ CurvilinearResampler::CurvilinearResampler(const std::vector<float>& latDeg, con
                 continue;
             // Great-circle edges bulge polewards of their end points by up to about L^2/8 tan(lat).
             const double bulgeDeg =
-                gnomonic ? edgeRad * edgeRad * (1.0 + std::tan(std::min(poleLat, 89.0) * kRadPerDeg)) / kRadPerDeg : 0.0;
+                gnomonic ? edgeRad * edgeRad * (1.0 + std::tan(std::min(poleLat, 89.0) * kRadPerDeg)) / kRadPerDeg
+                         : 0.0;
             const auto r0 = static_cast<long>(std::ceil((latLo - bulgeDeg - grid_.lat0Deg) / grid_.dLatDeg - 1e-9));
             const auto r1 = static_cast<long>(std::floor((latHi + bulgeDeg - grid_.lat0Deg) / grid_.dLatDeg + 1e-9));
             long c0 = 0, c1 = long(grid_.nLon) - 1;
@@ -301,7 +306,7 @@ CurvilinearResampler::CurvilinearResampler(const std::vector<float>& latDeg, con
                 if (off < 0)
                     off += 360.0;
                 if (!global_ && off > targetSpanDeg + 0.5 * (360.0 - targetSpanDeg))
-                    off -= 360.0;  // the quad starts west of the target's first column
+                    off -= 360.0; // the quad starts west of the target's first column
                 c0 = static_cast<long>(std::ceil(off / grid_.dLonDeg - 1e-9));
                 c1 = static_cast<long>(std::floor((off + lonHi - lonLo) / grid_.dLonDeg + 1e-9));
                 if (!global_)
@@ -318,12 +323,12 @@ CurvilinearResampler::CurvilinearResampler(const std::vector<float>& latDeg, con
                     const auto col = size_t(((cc % long(grid_.nLon)) + long(grid_.nLon)) % long(grid_.nLon));
                     QuadPosition& cell = cells_[size_t(r) * grid_.nLon + col];
                     if (cell.quad != kOutside)
-                        continue;  // already inside a neighbouring quad (shared edge)
+                        continue; // already inside a neighbouring quad (shared edge)
                     const Vec3 t{cosLat[size_t(r)] * cosLon[col], cosLat[size_t(r)] * sinLon[col], sinLat[size_t(r)]};
                     Point tp{};
                     double a = 0, b = 0;
-                    if (!plane(t, grid_.lat0Deg + double(r) * grid_.dLatDeg, grid_.lon0Deg + double(col) * grid_.dLonDeg,
-                               tp) ||
+                    if (!plane(t, grid_.lat0Deg + double(r) * grid_.dLatDeg,
+                               grid_.lon0Deg + double(col) * grid_.dLonDeg, tp) ||
                         !inverseBilinear(tp, p[0], p[1], p[2], p[3], a, b, tolerance))
                         continue;
                     cell.quad = uint32_t(j * nx + i);
@@ -372,4 +377,4 @@ double CurvilinearResampler::coveredFraction() const
     return cells_.empty() ? 0.0 : double(inside) / double(cells_.size());
 }
 
-}  // namespace sky
+} // namespace sky

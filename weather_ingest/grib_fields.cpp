@@ -23,16 +23,14 @@ const std::vector<GribRoleRow> kTable = {
     {R::CoverMiddle, "tcc|mcc", "middleCloudLayer", 0, "GFS", "middle cloud cover (%)", "layers[1].coverage"},
     {R::CoverMiddle, "mcc", "*", 1, "ECMWF", "medium cloud cover (0-1)", "layers[1].coverage"},
     {R::CoverMiddle, "CLCM", "*", 1, "ICON", "medium cloud cover (%)", "layers[1].coverage"},
-    {R::CoverConvective, "tcc", "convectiveCloudLayer", 0, "GFS", "convective cloud cover (%)",
-     "layers[2].coverage"},
+    {R::CoverConvective, "tcc", "convectiveCloudLayer", 0, "GFS", "convective cloud cover (%)", "layers[2].coverage"},
     {R::CoverHigh, "tcc|hcc", "highCloudLayer", 0, "GFS", "high cloud cover (%)", "high.coverage"},
     {R::CoverHigh, "hcc", "*", 1, "ECMWF", "high cloud cover (0-1)", "high.coverage"},
     {R::CoverHigh, "CLCH", "*", 1, "ICON", "high cloud cover (%)", "high.coverage"},
     {R::CoverTotal, "tcc", "atmosphereSingleLayer|entireAtmosphere|surface", 2, "GFS, HRRR, ECMWF", "total cloud cover",
      "provenance only (layers carry the cover)"},
     {R::CoverTotal, "CLCT", "*", 2, "ICON", "total cloud cover (%)", "provenance only (layers carry the cover)"},
-    {R::PresLowBottom, "pres", "lowCloudBottom", 0, "GFS", "low cloud bottom pressure (Pa)",
-     "layers[0].baseAltitudeM"},
+    {R::PresLowBottom, "pres", "lowCloudBottom", 0, "GFS", "low cloud bottom pressure (Pa)", "layers[0].baseAltitudeM"},
     {R::PresLowTop, "pres", "lowCloudTop", 0, "GFS", "low cloud top pressure (Pa)", "layers[0].topAltitudeM"},
     {R::PresMiddleBottom, "pres", "middleCloudBottom", 0, "GFS", "middle cloud bottom pressure (Pa)",
      "layers[1].baseAltitudeM"},
@@ -64,8 +62,7 @@ const std::vector<GribRoleRow> kTable = {
      "large-scale rate, when no prate/tp"},
     {R::TropopausePressure, "trpp|pres", "tropopause", 0, "GFS", "tropopause pressure (Pa)",
      "tropopauseAltitudeM when no height"},
-    {R::TropopauseHeight, "gh", "tropopause", 0, "GFS", "tropopause geopotential height (gpm)",
-     "tropopauseAltitudeM"},
+    {R::TropopauseHeight, "gh", "tropopause", 0, "GFS", "tropopause geopotential height (gpm)", "tropopauseAltitudeM"},
     {R::CloudBaseHeight, "cbh", "*", 0, "ECMWF", "cloud base height above ground (m)",
      "base of the lowest layer present (low, else middle) (+ orography)"},
     {R::CloudBaseHeight, "CEILING", "*", 1, "ICON", "ceiling above ground (m)", "as cbh, when no cbh"},
@@ -87,16 +84,16 @@ const std::vector<GribRoleRow> kTable = {
      "pressure -> altitude (log-pressure interpolation)"},
     {R::LevelGeopotential, "z|FI", "isobaricInhPa|isobaricInPa", 0, "ECMWF", "geopotential on pressure levels (m2 s-2)",
      "pressure -> altitude (/ 9.80665)"},
-    {R::LevelU, "u|U", "isobaricInhPa|isobaricInPa", 0, "GFS, HRRR, ECMWF, ICON", "eastward wind on pressure levels (m/s)",
-     "windEastMS of each layer at its mid-layer pressure"},
-    {R::LevelV, "v|V", "isobaricInhPa|isobaricInPa", 0, "GFS, HRRR, ECMWF, ICON", "northward wind on pressure levels (m/s)",
-     "windNorthMS of each layer at its mid-layer pressure"},
+    {R::LevelU, "u|U", "isobaricInhPa|isobaricInPa", 0, "GFS, HRRR, ECMWF, ICON",
+     "eastward wind on pressure levels (m/s)", "windEastMS of each layer at its mid-layer pressure"},
+    {R::LevelV, "v|V", "isobaricInhPa|isobaricInPa", 0, "GFS, HRRR, ECMWF, ICON",
+     "northward wind on pressure levels (m/s)", "windNorthMS of each layer at its mid-layer pressure"},
     {R::LevelCloudMixingRatio, "clwmr", "isobaricInhPa|isobaricInPa", 0, "GFS", "cloud mixing ratio (kg/kg)",
      "levelFields 'cloudMixingRatio' (--with-3d)"},
     {R::LevelCloudCover, "cc|CLC", "isobaricInhPa|isobaricInPa", 0, "ECMWF, ICON", "cloud cover on levels (0-1 or %)",
      "base/top of layers 0, 1 and high; levelFields 'cloudCover' (--with-3d)"},
-    {R::LevelCloudLiquid, "clwc|QC", "isobaricInhPa|isobaricInPa", 0, "ECMWF, ICON", "cloud liquid water content (kg/kg)",
-     "levelFields 'cloudLiquidWater' (--with-3d)"},
+    {R::LevelCloudLiquid, "clwc|QC", "isobaricInhPa|isobaricInPa", 0, "ECMWF, ICON",
+     "cloud liquid water content (kg/kg)", "levelFields 'cloudLiquidWater' (--with-3d)"},
     {R::LevelCloudIce, "ciwc|QI", "isobaricInhPa|isobaricInPa", 0, "ECMWF, ICON", "cloud ice water content (kg/kg)",
      "levelFields 'cloudIceWater' (--with-3d)"},
 };
@@ -159,7 +156,7 @@ void rotateGridRelativeWinds(std::vector<GribRecord>& records)
     }
 }
 
-}  // namespace
+} // namespace
 
 std::vector<GribRecord> readGribRecords(GribFile& file, size_t maxCells, const ProgressFn& progress)
 {

@@ -16,13 +16,41 @@ namespace sky
 /// What a message is used for.
 enum class GribRole : uint8_t
 {
-    CoverLow, CoverMiddle, CoverHigh, CoverConvective, CoverBoundaryLayer, CoverTotal,
-    PresLowBottom, PresLowTop, PresMiddleBottom, PresMiddleTop, PresHighBottom, PresHighTop,
-    PresConvBottom, PresConvTop,
-    Cape, PrecipRate, ConvPrecipRate, TotalPrecipAcc, ConvPrecipAcc, LargeScalePrecipAcc,
-    TropopausePressure, TropopauseHeight, CloudBaseHeight, CloudBaseHeightMsl, CloudTopHeightMsl, Visibility,
-    Orography, SurfaceGeopotential,
-    LevelHeight, LevelGeopotential, LevelU, LevelV, LevelCloudMixingRatio, LevelCloudCover, LevelCloudLiquid,
+    CoverLow,
+    CoverMiddle,
+    CoverHigh,
+    CoverConvective,
+    CoverBoundaryLayer,
+    CoverTotal,
+    PresLowBottom,
+    PresLowTop,
+    PresMiddleBottom,
+    PresMiddleTop,
+    PresHighBottom,
+    PresHighTop,
+    PresConvBottom,
+    PresConvTop,
+    Cape,
+    PrecipRate,
+    ConvPrecipRate,
+    TotalPrecipAcc,
+    ConvPrecipAcc,
+    LargeScalePrecipAcc,
+    TropopausePressure,
+    TropopauseHeight,
+    CloudBaseHeight,
+    CloudBaseHeightMsl,
+    CloudTopHeightMsl,
+    Visibility,
+    Orography,
+    SurfaceGeopotential,
+    LevelHeight,
+    LevelGeopotential,
+    LevelU,
+    LevelV,
+    LevelCloudMixingRatio,
+    LevelCloudCover,
+    LevelCloudLiquid,
     LevelCloudIce,
     Count
 };
@@ -55,7 +83,7 @@ struct GribRecord
     GribRoleRow row;
     double levelPa = 0;  ///< pressure of an isobaric level (Pa); 0 otherwise
     GridField field;
-    std::shared_ptr<const GribGrid> grid;  ///< the GRIB grid it was decoded from (shared)
+    std::shared_ptr<const GribGrid> grid; ///< the GRIB grid it was decoded from (shared)
     std::string source;  ///< "gfs.grib2 message 250 tcc/lowCloudLayer/0"
     std::string file;    ///< path of the file it came from
 };

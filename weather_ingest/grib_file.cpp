@@ -124,7 +124,8 @@ std::string describeGrid(const KeyReader& k, const std::string& gridType)
     else if (gridType.find("rotated") != std::string::npos)
         d += format(", south pole of rotation %g, %g", k.getDoubleOr("latitudeOfSouthernPoleInDegrees"),
                     k.getDoubleOr("longitudeOfSouthernPoleInDegrees"));
-    const double lat1 = k.getDoubleOr("latitudeOfFirstGridPointInDegrees"), lon1 = k.getDoubleOr("longitudeOfFirstGridPointInDegrees");
+    const double lat1 = k.getDoubleOr("latitudeOfFirstGridPointInDegrees"),
+                 lon1 = k.getDoubleOr("longitudeOfFirstGridPointInDegrees");
     if (gridType == "regular_ll")
         d += format(", lat %g .. %g", lat1, k.getDoubleOr("latitudeOfLastGridPointInDegrees")) +
              format(", lon %g .. %g", lon1, k.getDoubleOr("longitudeOfLastGridPointInDegrees"));
@@ -322,10 +323,10 @@ GridField GribMessage::decode(size_t maxCells, GribGridCache& grids, std::shared
     if (dataPoints < 0 || size_t(dataPoints) != grid->sourcePoints() || count != grid->sourcePoints() ||
         codedValues < 0 || codedValues > dataPoints || bitsPerValue < 0 || bitsPerValue > 64)
         throw IngestError(IngestErrorKind::Corrupt, file_, where, field,
-                          "grid " + info_.gridDescription + ": inconsistent sizes: " +
-                              std::to_string(grid->sourcePoints()) + " grid points, " + std::to_string(dataPoints) +
-                              " data points, " + std::to_string(count) + " values, " + std::to_string(codedValues) +
-                              " coded values");
+                          "grid " + info_.gridDescription +
+                              ": inconsistent sizes: " + std::to_string(grid->sourcePoints()) + " grid points, " +
+                              std::to_string(dataPoints) + " data points, " + std::to_string(count) + " values, " +
+                              std::to_string(codedValues) + " coded values");
     k.check(codes_set_double(h, "missingValue", kMissingSentinel), "missingValue");
     std::vector<double> raw(count);
     size_t got = count;
@@ -356,12 +357,10 @@ GribGridPoints GribMessage::locatePoints(size_t maxCells) const
     const std::string field = info_.label();
     const std::string grid = "grid " + info_.gridDescription;
     const KeyReader k(h, file_, info_.number);
-    const auto unsupported = [&](const std::string& why) {
-        return IngestError(IngestErrorKind::UnsupportedGrid, file_, where, field, grid + ": " + why);
-    };
-    const auto corrupt = [&](const std::string& why) {
-        return IngestError(IngestErrorKind::Corrupt, file_, where, field, grid + ": " + why);
-    };
+    const auto unsupported = [&](const std::string& why)
+    { return IngestError(IngestErrorKind::UnsupportedGrid, file_, where, field, grid + ": " + why); };
+    const auto corrupt = [&](const std::string& why)
+    { return IngestError(IngestErrorKind::Corrupt, file_, where, field, grid + ": " + why); };
     GribGridPoints p;
     p.gridType = info_.gridType;
     p.description = info_.gridDescription;

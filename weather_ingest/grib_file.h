@@ -33,9 +33,9 @@ struct GribMessageInfo
     int64_t validTimeUnixS = 0; ///< validity date and time
     double accumulationHours = 0;  ///< endStep - startStep (hours) for accumulated/averaged fields, else 0
     std::string stepRange;      ///< e.g. "120", "114-120"
-    std::string gridDescription;  ///< grid type, size, resolution, e.g. "lambert 1799 x 1059, 3 km, ..." (for info)
-    std::string gridKey;        ///< checksum of the grid section: messages with equal keys share a grid
-    bool uvRelativeToGrid = false;  ///< vector components along the grid's x/y axes, not east/north
+    std::string gridDescription;   ///< grid type, size, resolution, e.g. "lambert 1799 x 1059, 3 km, ..." (for info)
+    std::string gridKey;           ///< checksum of the grid section: messages with equal keys share a grid
+    bool uvRelativeToGrid = false; ///< vector components along the grid's x/y axes, not east/north
 
     std::string label() const { return shortName + "/" + typeOfLevel + "/" + std::to_string(level); }
 };

@@ -35,7 +35,7 @@ double wrap360(double deg)
     return d < 0 ? d + 360.0 : d;
 }
 
-}  // namespace
+} // namespace
 
 GribGrid::GribGrid(const LatLonGrid& grid, std::string description)
     : gridType_("regular_ll"), description_(std::move(description)), sourcePoints_(grid.cellCount()), target_(grid)
@@ -140,7 +140,8 @@ GribGrid::GribGrid(const GribGridPoints& p, size_t maxCells)
             for (size_t i = 0; i < nx_; ++i)
             {
                 const size_t a = j * nx_ + (i + 1 < nx_ ? i : i - 1), b = a + 1;
-                const double east = wrapLongitudeDeg(double(lon[b]) - double(lon[a])) * std::cos(double(lat[a]) * kRadPerDeg);
+                const double east =
+                    wrapLongitudeDeg(double(lon[b]) - double(lon[a])) * std::cos(double(lat[a]) * kRadPerDeg);
                 const double north = double(lat[b]) - double(lat[a]);
                 double alpha = std::atan2(north, east);
                 if (p.iScansNegatively)
@@ -185,7 +186,7 @@ std::vector<float> GribGrid::structured(const std::vector<double>& values) const
                 const double near = f < 0.5 ? row[k0] : row[k1];
                 const double far = f < 0.5 ? row[k1] : row[k0];
                 // A missing point stays missing; a known one is not averaged with a missing neighbour.
-                out[j * nx_ + c] = float(!std::isfinite(near) ? std::nan("")
+                out[j * nx_ + c] = float(!std::isfinite(near)  ? std::nan("")
                                          : !std::isfinite(far) ? near
                                                                : row[k0] * (1.0 - f) + row[k1] * f);
             }
@@ -220,4 +221,4 @@ void GribGrid::rotateToEarth(std::vector<float>& u, std::vector<float>& v) const
     }
 }
 
-}  // namespace sky
+} // namespace sky

@@ -26,22 +26,22 @@ inline constexpr double kRegionalEdgeFraction = 0.05;
 /// Where each point of a GRIB grid lies, in the order of the message's values (from ecCodes' iterator).
 struct GribGridPoints
 {
-    std::string gridType;     ///< ecCodes gridType, e.g. "lambert", "reduced_gg"
-    std::string description;  ///< human-readable grid, size and resolution (for info and provenance)
-    size_t ni = 0;            ///< points along a row (structured grids); 0 for reduced grids
-    size_t nj = 0;            ///< rows
-    std::vector<long> pl;     ///< points per row, reduced grids only
+    std::string gridType;    ///< ecCodes gridType, e.g. "lambert", "reduced_gg"
+    std::string description; ///< human-readable grid, size and resolution (for info and provenance)
+    size_t ni = 0;           ///< points along a row (structured grids); 0 for reduced grids
+    size_t nj = 0;           ///< rows
+    std::vector<long> pl;    ///< points per row, reduced grids only
     bool iScansNegatively = false;
     bool jPointsAreConsecutive = false;
     bool alternativeRowScanning = false;
-    std::vector<double> latDeg;  ///< one per value
-    std::vector<double> lonDeg;  ///< one per value
+    std::vector<double> latDeg; ///< one per value
+    std::vector<double> lonDeg; ///< one per value
 };
 
 /// A grid ready to turn message values into snapshot fields.
 class GribGrid
 {
-public:
+  public:
     /// A regular lat/lon grid that needs no resampling (values already in canonical order).
     GribGrid(const LatLonGrid& grid, std::string description);
 
@@ -68,7 +68,7 @@ public:
     /// @return target().cellCount() values (NaN = missing or outside the grid).
     std::vector<float> resample(const std::vector<double>& values) const;
 
-private:
+  private:
     std::vector<float> structured(const std::vector<double>& values) const;
     void makeEdgeWeights(const std::vector<float>& structuredLat, bool periodic);
 
@@ -77,19 +77,19 @@ private:
     size_t sourcePoints_ = 0;
     LatLonGrid target_;
     std::vector<float> dataWeight_;
-    std::vector<float> xAxisCos_, xAxisSin_;  ///< direction of the grid's x axis (east = 0), per target cell
-    size_t nx_ = 0, ny_ = 0;                  ///< the structured layout (after expanding reduced rows)
-    std::vector<uint32_t> order_;             ///< structured index -> value index (empty: identity)
-    std::vector<size_t> rowStart_;            ///< reduced grids: first value of each row
-    std::vector<long> rowPoints_;             ///< reduced grids: points in each row
-    std::vector<double> rowShift_;            ///< reduced grids: first column's offset in the row (in points)
+    std::vector<float> xAxisCos_, xAxisSin_; ///< direction of the grid's x axis (east = 0), per target cell
+    size_t nx_ = 0, ny_ = 0;                 ///< the structured layout (after expanding reduced rows)
+    std::vector<uint32_t> order_;            ///< structured index -> value index (empty: identity)
+    std::vector<size_t> rowStart_;           ///< reduced grids: first value of each row
+    std::vector<long> rowPoints_;            ///< reduced grids: points in each row
+    std::vector<double> rowShift_;           ///< reduced grids: first column's offset in the row (in points)
     std::unique_ptr<CurvilinearResampler> resampler_;
 };
 
 /// Grids by their grid section's checksum, so each is located and weighted once per conversion.
 class GribGridCache
 {
-public:
+  public:
     std::shared_ptr<const GribGrid> find(const std::string& key) const
     {
         const auto it = grids_.find(key);
@@ -97,8 +97,8 @@ public:
     }
     void add(const std::string& key, std::shared_ptr<const GribGrid> grid) { grids_[key] = std::move(grid); }
 
-private:
+  private:
     std::map<std::string, std::shared_ptr<const GribGrid>> grids_;
 };
 
-}  // namespace sky
+} // namespace sky

@@ -51,7 +51,8 @@ private:
                 continue;
             std::vector<float> v = r->field.values;
             // Cloud cover on levels comes as a fraction (ECMWF cc) or in % (ICON CLC).
-            const float unit = role == GribRole::LevelCloudCover && r->info.units.find('%') != std::string::npos ? 0.01f : 1.0f;
+            const float unit =
+                role == GribRole::LevelCloudCover && r->info.units.find('%') != std::string::npos ? 0.01f : 1.0f;
             if (scale * unit != 1.0f)
                 for (float& x : v)
                     x *= scale * unit;
@@ -163,9 +164,7 @@ void GribMapper::heights(size_t layerIndex, LayerKind kind, GribRole bottomRole,
     const std::vector<float> topMslM = topMsl ? values(topMsl, -1000.0f, 30000.0f) : std::vector<float>();
     const std::vector<float>& lowCover = s.layers[kLowLayer].coverage;
     const std::vector<float>& middleCover = s.layers[kMiddleLayer].coverage;
-    const auto lowest = [&](size_t i) {
-        return kind == LayerKind::Low || !(lowCover[i] >= kMinCloudCoverage);
-    };
+    const auto lowest = [&](size_t i) { return kind == LayerKind::Low || !(lowCover[i] >= kMinCloudCoverage); };
     if (cbh && kind == LayerKind::Middle)
         s.provenance["layers/1/baseAltitudeM"] = cbh->source + " where no low cloud";
     if (baseMsl)

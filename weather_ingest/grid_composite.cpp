@@ -48,7 +48,8 @@ std::vector<SourcePosition> positions(const LatLonGrid& src, const LatLonGrid& d
             const auto fy = float(std::clamp(y - double(i0), 0.0, 1.0));
             const auto fx = float(std::clamp(x - double(j0), 0.0, 1.0));
             p.inside = true;
-            p.corner = {src.index(i0, j0 % src.nLon), src.index(i0, j1), src.index(i1, j0 % src.nLon), src.index(i1, j1)};
+            p.corner = {src.index(i0, j0 % src.nLon), src.index(i0, j1), src.index(i1, j0 % src.nLon),
+                        src.index(i1, j1)};
             p.weight = {(1 - fy) * (1 - fx), (1 - fy) * fx, fy * (1 - fx), fy * fx};
             p.nearest = p.corner[(fy >= 0.5f ? 2 : 0) + (fx >= 0.5f ? 1 : 0)];
         }
@@ -92,9 +93,12 @@ std::vector<uint8_t> nearest(const std::vector<uint8_t>& v, const std::vector<So
     return out;
 }
 
-double spanLonDeg(const LatLonGrid& g) { return wrapsInLongitude(g) ? 360.0 : g.dLonDeg * double(g.nLon - 1); }
+double spanLonDeg(const LatLonGrid& g)
+{
+    return wrapsInLongitude(g) ? 360.0 : g.dLonDeg * double(g.nLon - 1);
+}
 
-}  // namespace
+} // namespace
 
 WeatherSnapshot resampleSnapshot(const WeatherSnapshot& s, const LatLonGrid& target)
 {
@@ -145,9 +149,9 @@ WeatherSnapshot compositeSnapshots(std::vector<WeatherSnapshot> parts, size_t ma
 {
     if (parts.size() == 1)
         return std::move(parts.front());
-    std::stable_sort(parts.begin(), parts.end(), [](const WeatherSnapshot& a, const WeatherSnapshot& b) {
-        return std::abs(a.grid.dLatDeg) * a.grid.dLonDeg > std::abs(b.grid.dLatDeg) * b.grid.dLonDeg;
-    });
+    std::stable_sort(parts.begin(), parts.end(),
+                     [](const WeatherSnapshot& a, const WeatherSnapshot& b)
+                     { return std::abs(a.grid.dLatDeg) * a.grid.dLonDeg > std::abs(b.grid.dLatDeg) * b.grid.dLonDeg; });
     // The union of the areas; longitudes unwrapped around the coarsest part's first column.
     const double lonRef = parts.front().grid.lon0Deg;
     double latMin = 90, latMax = -90, lonMin = 1e9, lonMax = -1e9;
@@ -202,8 +206,9 @@ WeatherSnapshot compositeSnapshots(std::vector<WeatherSnapshot> parts, size_t ma
         for (const auto& [key, value] : fine.provenance)
         {
             const auto below = out.provenance.find(key);
-            blended.provenance[key] =
-                below == out.provenance.end() || below->second == value ? value : value + "; outside it: " + below->second;
+            blended.provenance[key] = below == out.provenance.end() || below->second == value
+                                          ? value
+                                          : value + "; outside it: " + below->second;
         }
         layout = (fine.provenance.count("grid") ? fine.provenance.at("grid") : "grid " + std::to_string(k + 1)) +
                  " over " + layout;
@@ -215,4 +220,4 @@ WeatherSnapshot compositeSnapshots(std::vector<WeatherSnapshot> parts, size_t ma
     return out;
 }
 
-}  // namespace sky
+} // namespace sky

@@ -32,4 +32,4 @@ WeatherSnapshot resampleSnapshot(const WeatherSnapshot& source, const LatLonGrid
 WeatherSnapshot compositeSnapshots(std::vector<WeatherSnapshot> parts, size_t maxCells,
                                    std::vector<std::string>& warnings);
 
-}  // namespace sky
+} // namespace sky

@@ -85,8 +85,7 @@ WeatherSnapshot mapTime(const std::vector<const GribRecord*>& records, const Map
             if (groups.size() > 1)
             {
                 warnings.push_back(g.front()->source + " and " + std::to_string(g.size() - 1) +
-                                   " other messages on grid " + gridName +
-                                   " not used: no cloud cover on that grid");
+                                   " other messages on grid " + gridName + " not used: no cloud cover on that grid");
                 continue;
             }
         }
@@ -103,7 +102,7 @@ WeatherSnapshot mapTime(const std::vector<const GribRecord*>& records, const Map
         parts.push_back(std::move(s));
     }
     if (parts.empty())
-        return mapGribRecords(records, options, warnings);  // names what is missing
+        return mapGribRecords(records, options, warnings); // names what is missing
     return compositeSnapshots(std::move(parts), kMaxCompositeCells, warnings);
 }
 

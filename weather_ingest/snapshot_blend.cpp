@@ -76,10 +76,9 @@ const CloudLayerFields* findLayer(const WeatherSnapshot& s, const std::string& n
     return nullptr;
 }
 
-}  // namespace
+} // namespace
 
-void blendSnapshotFields(const WeatherSnapshot& a, const WeatherSnapshot& b, const BlendWeight& w,
-                         WeatherSnapshot& out)
+void blendSnapshotFields(const WeatherSnapshot& a, const WeatherSnapshot& b, const BlendWeight& w, WeatherSnapshot& out)
 {
     const size_t n = a.grid.cellCount();
     const float nan = NAN;
@@ -125,12 +124,12 @@ void blendSnapshotFields(const WeatherSnapshot& a, const WeatherSnapshot& b, con
                 {
                     const float va = fa.values[k * n + i], vb = fb->values[k * n + i], wb = w.at(i);
                     f.values[k * n + i] = std::isfinite(va) && std::isfinite(vb) ? va * (1 - wb) + vb * wb
-                                          : std::isfinite(va)                      ? va
-                                                                                   : vb;
+                                          : std::isfinite(va)                    ? va
+                                                                                 : vb;
                 }
         }
         out.levelFields.push_back(std::move(f));
     }
 }
 
-}  // namespace sky
+} // namespace sky

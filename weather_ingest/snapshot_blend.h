@@ -21,8 +21,8 @@ namespace sky
 /// The weight of snapshot b: one value for every cell, or one per cell.
 struct BlendWeight
 {
-    float uniform = 0;                        ///< used when perCell is null
-    const std::vector<float>* perCell = nullptr;  ///< grid.cellCount() values in [0, 1]
+    float uniform = 0;                           ///< used when perCell is null
+    const std::vector<float>* perCell = nullptr; ///< grid.cellCount() values in [0, 1]
 
     float at(size_t cell) const { return perCell ? (*perCell)[cell] : uniform; }
 };
@@ -32,4 +32,4 @@ struct BlendWeight
 void blendSnapshotFields(const WeatherSnapshot& a, const WeatherSnapshot& b, const BlendWeight& w,
                          WeatherSnapshot& out);
 
-}  // namespace sky
+} // namespace sky

@@ -63,7 +63,7 @@ std::vector<ArrayRef> listArrays(WeatherSnapshot& s)
     refs.push_back({"high/windNorthMS", &s.high.windNorthMS, nullptr, n});
     refs.push_back({"capeJKg", &s.capeJKg, nullptr, n});
     refs.push_back({"tropopauseAltitudeM", &s.tropopauseAltitudeM, nullptr, n});
-    refs.push_back({"dataWeight", &s.dataWeight, nullptr, n});  // version 2
+    refs.push_back({"dataWeight", &s.dataWeight, nullptr, n}); // version 2
     for (size_t i = 0; i < s.levelFields.size(); ++i)
         refs.push_back({"levelFields/" + std::to_string(i) + "/values", &s.levelFields[i].values, nullptr,
                         n * s.levelFields[i].pressurePa.size()});
@@ -222,9 +222,10 @@ bool parseSnapshots(const uint8_t* mem, std::FILE* file, uint64_t totalBytes, co
     if (crc32c(header, 28) != loadLe<uint32_t>(header + 28))
         return fail(error, name, "header checksum mismatch (corrupted file)");
     if (version < kSnapshotFormatOldestVersion || version > kSnapshotFormatVersion)
-        return fail(error, name, "format version " + std::to_string(version) + " is not supported (this build reads " +
-                                     std::to_string(kSnapshotFormatOldestVersion) + " to " +
-                                     std::to_string(kSnapshotFormatVersion) + ")");
+        return fail(error, name,
+                    "format version " + std::to_string(version) + " is not supported (this build reads " +
+                        std::to_string(kSnapshotFormatOldestVersion) + " to " + std::to_string(kSnapshotFormatVersion) +
+                        ")");
     if (payloadBytes != totalBytes - kHeaderBytes)
         return fail(error, name,
                     (payloadBytes > totalBytes - kHeaderBytes ? "truncated: header says " : "trailing data: header says ") +

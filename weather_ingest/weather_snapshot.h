@@ -108,7 +108,7 @@ struct WeatherSnapshot
     std::vector<float> tropopauseAltitudeM;    ///< m above ellipsoid, may be empty
     std::map<std::string, std::string> provenance;  ///< field name -> where it came from (file, message, variable)
     std::vector<PressureLevelField> levelFields;    ///< optional 3D fields (added by weather_ingest), may be empty
-    std::vector<float> dataWeight;  ///< [0,1] per cell, see "No data" above; empty = 1 everywhere
+    std::vector<float> dataWeight;                  ///< [0,1] per cell, see "No data" above; empty = 1 everywhere
 };
 
 }  // namespace sky

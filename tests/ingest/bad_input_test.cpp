@@ -166,7 +166,7 @@ TEST(BadInput, FieldsOnDifferentGridsCombineAndTheFinerWins)
     const ConvertResult r = convertFiles({writeFixture("mixed.grib2", f)}, MappingOptions{}, {});
     ASSERT_EQ(r.snapshots.size(), 1u);
     const WeatherSnapshot& s = r.snapshots[0];
-    EXPECT_EQ(s.grid.nLon, 18u);  // the finer of the two global grids
+    EXPECT_EQ(s.grid.nLon, 18u); // the finer of the two global grids
     EXPECT_TRUE(s.dataWeight.empty());
     // Convective cover exists only on the coarser grid (10 %); the finer one has none there: 0 wins.
     EXPECT_NEAR(s.layers[2].coverage[40], 0.0f, 1e-6f);

@@ -32,8 +32,14 @@ double distanceKm(double lat1, double lon1, double lat2, double lon2)
     return 6371.0 * std::acos(std::clamp(c, -1.0, 1.0));
 }
 
-double cellLat(const LatLonGrid& g, size_t c) { return g.lat0Deg + double(c / g.nLon) * g.dLatDeg; }
-double cellLon(const LatLonGrid& g, size_t c) { return g.lon0Deg + double(c % g.nLon) * g.dLonDeg; }
+double cellLat(const LatLonGrid& g, size_t c)
+{
+    return g.lat0Deg + double(c / g.nLon) * g.dLatDeg;
+}
+double cellLon(const LatLonGrid& g, size_t c)
+{
+    return g.lon0Deg + double(c % g.nLon) * g.dLonDeg;
+}
 
 WeatherSnapshot convertOne(const std::string& path)
 {
@@ -87,7 +93,8 @@ TEST_P(CloudDisc, LandsAtItsLatitudeAndLongitude)
     EXPECT_LT(farthestCloudKm, c.radiusKm + 2 * c.toleranceKm) << c.name;
     EXPECT_GT(cover[nearest], 0.6f) << c.name << " at the known point";
     EXPECT_NE(s.provenance.at("grid").find(c.kind == FixtureGrid::ReducedGaussian ? "reduced_gg" : "->"),
-              std::string::npos) << s.provenance.at("grid");
+              std::string::npos)
+        << s.provenance.at("grid");
     if (c.kind == FixtureGrid::ReducedGaussian)
     {
         EXPECT_TRUE(s.dataWeight.empty()) << "a global grid has data everywhere";
@@ -127,8 +134,9 @@ TEST(GridComposite, RegionalOverCoarserGridHasNoStepAtTheEdge)
     // Coarse: 1° lat/lon over North America, low cloud 20 %. Fine: Lambert at 6.7 km, 80 % everywhere.
     const LatLonGrid coarse{.lat0Deg = 70, .lon0Deg = -140, .dLatDeg = -1, .dLonDeg = 1, .nLat = 61, .nLon = 91};
     const std::string coarsePath = test::tempPath("coarse.grib2");
-    writeGribFile(coarsePath, {test::field(coarse, {{"dataDate", "20240301"}, {"typeOfLevel", "lowCloudLayer"},
-                                                    {"shortName", "tcc"}}, 20)});
+    writeGribFile(
+        coarsePath,
+        {test::field(coarse, {{"dataDate", "20240301"}, {"typeOfLevel", "lowCloudLayer"}, {"shortName", "tcc"}}, 20)});
     const std::string finePath = test::tempPath("fine.grib2");
     writeCloudDiscFixture(finePath, FixtureGrid::Lambert, 38, -98, 50000, 80, false, true, 3);
     ConvertResult r = convertFiles({coarsePath, finePath}, MappingOptions{}, {});
@@ -198,7 +206,7 @@ TEST(BadGrid, DeclaredSizesThatDisagreeWithTheData)
     }
     const size_t s3 = section(bytes, 3);
     ASSERT_GT(s3, 0u);
-    bytes[s3 + 33] = char(61);  // Nx (octets 31-34 of template 3.30): 61 instead of 60
+    bytes[s3 + 33] = char(61); // Nx (octets 31-34 of template 3.30): 61 instead of 60
     std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
     const IngestError e = convertError(path);
     EXPECT_EQ(e.kind(), IngestErrorKind::Corrupt);
@@ -227,9 +235,17 @@ TEST(BadGrid, DegenerateLambertCone)
 {
     GribOutField f;
     f.sample = "regular_ll_sfc_grib2";
-    f.keys = {{"centre", "kwbc"}, {"typeOfLevel", "lowCloudLayer"}, {"shortName", "tcc"}, {"gridType", "lambert"},
-              {"Nx", "10"}, {"Ny", "8"}, {"DxInMetres", "20000"}, {"DyInMetres", "20000"}, {"LaDInDegrees", "30"},
-              {"Latin1InDegrees", "30"}, {"Latin2InDegrees", "-30"}};
+    f.keys = {{"centre", "kwbc"},
+              {"typeOfLevel", "lowCloudLayer"},
+              {"shortName", "tcc"},
+              {"gridType", "lambert"},
+              {"Nx", "10"},
+              {"Ny", "8"},
+              {"DxInMetres", "20000"},
+              {"DyInMetres", "20000"},
+              {"LaDInDegrees", "30"},
+              {"Latin1InDegrees", "30"},
+              {"Latin2InDegrees", "-30"}};
     const std::string path = test::tempPath("lambert-cylinder.grib2");
     writeGribFile(path, {f});
     const IngestError e = convertError(path);
@@ -240,5 +256,5 @@ TEST(BadGrid, DegenerateLambertCone)
     EXPECT_NE(m.find("degenerate Lambert cone"), std::string::npos) << m;
 }
 
-}  // namespace
-}  // namespace sky
+} // namespace
+} // namespace sky
