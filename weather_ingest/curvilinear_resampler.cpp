@@ -4,6 +4,7 @@
 #include "weather_ingest/regular_grid.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -13,16 +14,55 @@ namespace sky
 namespace
 {
 
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+
+// Quads with a corner beyond this latitude are solved in the gnomonic projection (see below).
+constexpr double kGnomonicAboveDeg = 80.0;
+
+using Vec3 = std::array<double, 3>;
+
+Vec3 unitVector(double latDeg, double lonDeg)
+{
+    const double cl = std::cos(latDeg * kRadPerDeg);
+    return {cl * std::cos(lonDeg * kRadPerDeg), cl * std::sin(lonDeg * kRadPerDeg), std::sin(latDeg * kRadPerDeg)};
+}
+
+double dot(const Vec3& a, const Vec3& b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+Vec3 cross(const Vec3& a, const Vec3& b)
+{
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+bool normalise(Vec3& v)
+{
+    const double n = std::sqrt(dot(v, v));
+    if (!(n > 1e-15))
+        return false;
+    v = {v[0] / n, v[1] / n, v[2] / n};
+    return true;
+}
+
+/// Angle between two unit vectors (radians), from the chord (accurate for small angles).
+double angleRad(const Vec3& a, const Vec3& b)
+{
+    const Vec3 d{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    return 2.0 * std::asin(std::min(1.0, 0.5 * std::sqrt(dot(d, d))));
+}
+
 struct Point
 {
-    double x;  // longitude * cos(lat0), degrees
-    double y;  // latitude, degrees
+    double x;
+    double y;
 };
 
 /// Inverse bilinear map of p in the quad (p00, p10, p01, p11): returns (a, b) with
 /// p = (1-a)(1-b) p00 + a(1-b) p10 + (1-a) b p01 + a b p11, by Newton iteration from the centre.
 bool inverseBilinear(const Point& p, const Point& p00, const Point& p10, const Point& p01, const Point& p11, double& a,
-                     double& b)
+                     double& b, double eps)
 {
     a = 0.5;
     b = 0.5;
@@ -44,88 +84,256 @@ bool inverseBilinear(const Point& p, const Point& p00, const Point& p10, const P
         if (std::abs(da) + std::abs(db) < 1e-12)
             break;
     }
-    const double eps = 1e-9;
     return a >= -eps && a <= 1 + eps && b >= -eps && b <= 1 + eps;
 }
 
-}  // namespace
+/// The gnomonic projection centred on a quad: great circles become straight lines.
+struct Gnomonic
+{
+    Vec3 centre{}, east{}, north{};
+
+    bool setUp(const Vec3& c)
+    {
+        centre = c;
+        east = cross(Vec3{0, 0, 1}, c);
+        if (!normalise(east))
+            east = {1, 0, 0}; // centred on a pole: any tangent direction will do
+        north = cross(c, east);
+        return true;
+    }
+    /// @return false for points 90° or more away from the centre.
+    bool project(const Vec3& v, Point& p) const
+    {
+        const double d = dot(v, centre);
+        if (!(d > 1e-6))
+            return false;
+        p = {dot(v, east) / d, dot(v, north) / d};
+        return true;
+    }
+};
+
+/// +1 when the closed boundary of the grid winds once round the north-south axis (it encloses a pole).
+bool boundaryEnclosesPole(const std::vector<double>& lon, size_t ny, size_t nx)
+{
+    std::vector<size_t> ring;
+    for (size_t i = 0; i < nx; ++i)
+        ring.push_back(i);
+    for (size_t j = 1; j < ny; ++j)
+        ring.push_back(j * nx + nx - 1);
+    for (size_t i = nx - 1; i-- > 0;)
+        ring.push_back((ny - 1) * nx + i);
+    for (size_t j = ny - 1; j-- > 1;)
+        ring.push_back(j * nx);
+    double turn = 0;
+    for (size_t k = 0; k < ring.size(); ++k)
+        turn += wrapLongitudeDeg(lon[ring[(k + 1) % ring.size()]] - lon[ring[k]]);
+    return std::abs(turn) > 180.0;
+}
+
+} // namespace
 
 CurvilinearResampler::CurvilinearResampler(const std::vector<float>& latDeg, const std::vector<float>& lonDeg,
                                            size_t ny, size_t nx, size_t maxCells)
+    : nx_(nx), ny_(ny)
 {
     if (ny < 2 || nx < 2 || latDeg.size() != ny * nx || lonDeg.size() != ny * nx)
         throw std::invalid_argument("2D coordinates need at least 2 x 2 points and ny * nx values");
-    const double lonRef = lonDeg[0];
-    std::vector<double> lon(ny * nx);
-    double latMin = 90, latMax = -90, lonMin = 1e9, lonMax = -1e9, latSum = 0;
-    for (size_t i = 0; i < lon.size(); ++i)
+    const size_t n = ny * nx;
+    std::vector<double> lat(n), lon(n);
+    std::vector<Vec3> v(n);
+    double latSum = 0;
+    for (size_t k = 0; k < n; ++k)
     {
-        if (!std::isfinite(latDeg[i]) || !std::isfinite(lonDeg[i]) || std::abs(latDeg[i]) > 90.0f)
+        if (!std::isfinite(latDeg[k]) || !std::isfinite(lonDeg[k]) || std::abs(latDeg[k]) > 90.0f)
             throw std::invalid_argument("2D coordinates contain a missing or invalid latitude/longitude");
-        lon[i] = lonRef + wrapLongitudeDeg(double(lonDeg[i]) - lonRef);
-        latMin = std::min(latMin, double(latDeg[i]));
-        latMax = std::max(latMax, double(latDeg[i]));
-        lonMin = std::min(lonMin, lon[i]);
-        lonMax = std::max(lonMax, lon[i]);
-        latSum += double(latDeg[i]);
+        lat[k] = latDeg[k];
+        lon[k] = lonDeg[k];
+        v[k] = unitVector(lat[k], lon[k]);
+        latSum += lat[k];
     }
-    const double lat0 = latSum / double(lon.size());
-    const double cosLat0 = std::max(std::cos(lat0 * std::numbers::pi / 180.0), 0.01);
-    const auto point = [&](size_t j, size_t i) { return Point{lon[j * nx + i] * cosLat0, double(latDeg[j * nx + i])}; };
 
+    // Mean spacing (degrees of great circle) between neighbours along rows and columns.
     double stepSum = 0;
     size_t steps = 0;
-    for (size_t j = 0; j + 1 < ny; ++j)
-        for (size_t i = 0; i + 1 < nx; ++i)
+    for (size_t j = 0; j < ny; ++j)
+        for (size_t i = 0; i < nx; ++i)
         {
-            const Point p = point(j, i), px = point(j, i + 1), py = point(j + 1, i);
-            stepSum += std::hypot(px.x - p.x, px.y - p.y) + std::hypot(py.x - p.x, py.y - p.y);
-            steps += 2;
+            if (i + 1 < nx)
+                stepSum += angleRad(v[j * nx + i], v[j * nx + i + 1]), ++steps;
+            if (j + 1 < ny)
+                stepSum += angleRad(v[j * nx + i], v[(j + 1) * nx + i]), ++steps;
         }
-    const double stepDeg = stepSum / double(steps);
+    const double stepDeg = stepSum / double(steps) / kRadPerDeg;
     if (!(stepDeg > 1e-6))
         throw std::invalid_argument("2D coordinates do not span an area");
+
+    // Columns that close on themselves: the middle row's last point is about one step from its first.
+    const size_t jm = ny / 2;
+    double rowStep = 0;
+    for (size_t i = 0; i + 1 < nx; ++i)
+        rowStep += angleRad(v[jm * nx + i], v[jm * nx + i + 1]);
+    rowStep /= double(nx - 1);
+    periodic_ = nx >= 3 && angleRad(v[jm * nx], v[jm * nx + nx - 1]) < 1.5 * rowStep;
+    const bool pole = !periodic_ && boundaryEnclosesPole(lon, ny, nx);
+    global_ = periodic_ || pole;
+
+    double latMin = *std::min_element(lat.begin(), lat.end());
+    double latMax = *std::max_element(lat.begin(), lat.end());
+    const double meanLat = latSum / double(n);
+    if (pole)
+        (meanLat > 0 ? latMax : latMin) = meanLat > 0 ? 90.0 : -90.0;
+    const double cosLat0 = std::max(std::cos(meanLat * kRadPerDeg), 0.01);
     grid_.lat0Deg = latMin;
     grid_.dLatDeg = stepDeg;
-    grid_.lon0Deg = lonMin;
-    grid_.dLonDeg = stepDeg / cosLat0;
-    const double nLat = std::floor((latMax - latMin) / grid_.dLatDeg) + 1;
-    const double nLon = std::floor((lonMax - lonMin) / grid_.dLonDeg) + 1;
+    double nLon = 0;
+    if (periodic_)
+    {
+        nLon = double(nx);
+        grid_.lon0Deg = lon[0];
+    }
+    else if (pole)
+    {
+        nLon = std::ceil(360.0 / (stepDeg / cosLat0));
+        grid_.lon0Deg = -180.0;
+    }
+    else
+    {
+        const double lonRef = lon[jm * nx + nx / 2];
+        double lonMin = 1e9, lonMax = -1e9;
+        for (const double l : lon)
+        {
+            const double u = lonRef + wrapLongitudeDeg(l - lonRef);
+            lonMin = std::min(lonMin, u);
+            lonMax = std::max(lonMax, u);
+        }
+        grid_.lon0Deg = lonMin;
+        grid_.dLonDeg = stepDeg / cosLat0;
+        nLon = std::floor((lonMax - lonMin) / grid_.dLonDeg + 1e-9) + 1;
+    }
+    if (global_)
+        grid_.dLonDeg = 360.0 / nLon;
+    const double nLat = std::floor((latMax - latMin) / grid_.dLatDeg + 1e-9) + 1;
     if (nLat * nLon > double(maxCells))
         throw std::length_error("resampled grid too large");
     grid_.nLat = static_cast<uint32_t>(nLat);
     grid_.nLon = static_cast<uint32_t>(nLon);
-    weights_.assign(grid_.cellCount(), Weights{});
+    cells_.assign(grid_.cellCount(), QuadPosition{});
 
+    std::vector<double> sinLat(grid_.nLat), cosLat(grid_.nLat), sinLon(grid_.nLon), cosLon(grid_.nLon);
+    for (uint32_t r = 0; r < grid_.nLat; ++r)
+    {
+        const double phi = (grid_.lat0Deg + double(r) * grid_.dLatDeg) * kRadPerDeg;
+        sinLat[r] = std::sin(phi);
+        cosLat[r] = std::cos(phi);
+    }
+    for (uint32_t c = 0; c < grid_.nLon; ++c)
+    {
+        const double lambda = (grid_.lon0Deg + double(c) * grid_.dLonDeg) * kRadPerDeg;
+        sinLon[c] = std::sin(lambda);
+        cosLon[c] = std::cos(lambda);
+    }
+    const double targetSpanDeg = double(grid_.nLon - 1) * grid_.dLonDeg;
+
+    const size_t quadColumns = periodic_ ? nx : nx - 1;
     for (size_t j = 0; j + 1 < ny; ++j)
-        for (size_t i = 0; i + 1 < nx; ++i)
+        for (size_t i = 0; i < quadColumns; ++i)
         {
-            const Point p00 = point(j, i), p10 = point(j, i + 1), p01 = point(j + 1, i), p11 = point(j + 1, i + 1);
-            const double yMin = std::min({p00.y, p10.y, p01.y, p11.y}), yMax = std::max({p00.y, p10.y, p01.y, p11.y});
-            const double xMin = std::min({p00.x, p10.x, p01.x, p11.x}) / cosLat0;
-            const double xMax = std::max({p00.x, p10.x, p01.x, p11.x}) / cosLat0;
-            const auto r0 = static_cast<long>(std::ceil((yMin - grid_.lat0Deg) / grid_.dLatDeg - 1e-9));
-            const auto r1 = static_cast<long>(std::floor((yMax - grid_.lat0Deg) / grid_.dLatDeg + 1e-9));
-            const auto c0 = static_cast<long>(std::ceil((xMin - grid_.lon0Deg) / grid_.dLonDeg - 1e-9));
-            const auto c1 = static_cast<long>(std::floor((xMax - grid_.lon0Deg) / grid_.dLonDeg + 1e-9));
-            for (long r = std::max(r0, 0L); r <= std::min(r1, long(grid_.nLat) - 1); ++r)
-                for (long c = std::max(c0, 0L); c <= std::min(c1, long(grid_.nLon) - 1); ++c)
+            const size_t i1 = (i + 1) % nx;
+            const std::array<size_t, 4> k{j * nx + i, j * nx + i1, (j + 1) * nx + i, (j + 1) * nx + i1};
+            Vec3 c{0, 0, 0};
+            for (const size_t q : k)
+                for (int d = 0; d < 3; ++d)
+                    c[size_t(d)] += v[q][size_t(d)];
+            Gnomonic g;
+            if (!normalise(c) || !g.setUp(c))
+                continue;
+            double latLo = 90, latHi = -90, lonLo = 0, lonHi = 0, edgeRad = 0;
+            for (size_t q = 0; q < 4; ++q)
+            {
+                latLo = std::min(latLo, lat[k[q]]);
+                latHi = std::max(latHi, lat[k[q]]);
+                const double rel = wrapLongitudeDeg(lon[k[q]] - lon[k[0]]);
+                lonLo = std::min(lonLo, rel);
+                lonHi = std::max(lonHi, rel);
+                edgeRad = std::max(edgeRad, angleRad(v[k[q]], v[k[(q + 1) % 4]]));
+            }
+            // Away from the poles a quad is taken with straight edges in longitude and latitude (scaled
+            // by cos(latitude)), so rows of a lat/lon-aligned grid (Mercator, Gaussian) keep their exact
+            // latitude; near a pole, and round it, in the gnomonic projection.
+            const double poleLat = std::max(std::abs(latLo), std::abs(latHi));
+            bool gnomonic = poleLat > kGnomonicAboveDeg;
+            bool allColumns = false;
+            const double cosC = std::cos(0.5 * (latLo + latHi) * kRadPerDeg);
+            const double lon00 = lon[k[0]], latC = 0.5 * (latLo + latHi);
+            const auto plane = [&](const Vec3& unit, double pointLat, double pointLon, Point& out)
+            {
+                if (gnomonic)
+                    return g.project(unit, out);
+                out = {wrapLongitudeDeg(pointLon - lon00) * cosC, pointLat - latC};
+                return true;
+            };
+            if (pole && poleLat > 45.0)
+            {
+                std::array<Point, 4> gp{};
+                Point pp{};
+                double a = 0, b = 0;
+                const Vec3 poleVector{0, 0, meanLat > 0 ? 1.0 : -1.0};
+                bool ok = g.project(poleVector, pp);
+                for (size_t q = 0; q < 4; ++q)
+                    ok = ok && g.project(v[k[q]], gp[q]);
+                if (ok && inverseBilinear(pp, gp[0], gp[1], gp[2], gp[3], a, b, 0.0))
                 {
-                    Weights& w = weights_[size_t(r) * grid_.nLon + size_t(c)];
-                    if (w.weight[0] + w.weight[1] + w.weight[2] + w.weight[3] > 0)
-                        continue;  // already inside a neighbouring quad (shared edge)
-                    const Point p{(grid_.lon0Deg + double(c) * grid_.dLonDeg) * cosLat0,
-                                  grid_.lat0Deg + double(r) * grid_.dLatDeg};
+                    gnomonic = allColumns = true;
+                    (meanLat > 0 ? latHi : latLo) = meanLat > 0 ? 90.0 : -90.0;
+                }
+            }
+            std::array<Point, 4> p{};
+            bool ok = true;
+            for (size_t q = 0; q < 4; ++q)
+                ok = ok && plane(v[k[q]], lat[k[q]], lon[k[q]], p[q]);
+            if (!ok)
+                continue;
+            // Great-circle edges bulge polewards of their end points by up to about L^2/8 tan(lat).
+            const double bulgeDeg =
+                gnomonic ? edgeRad * edgeRad * (1.0 + std::tan(std::min(poleLat, 89.0) * kRadPerDeg)) / kRadPerDeg
+                         : 0.0;
+            const auto r0 = static_cast<long>(std::ceil((latLo - bulgeDeg - grid_.lat0Deg) / grid_.dLatDeg - 1e-9));
+            const auto r1 = static_cast<long>(std::floor((latHi + bulgeDeg - grid_.lat0Deg) / grid_.dLatDeg + 1e-9));
+            long c0 = 0, c1 = long(grid_.nLon) - 1;
+            if (!allColumns)
+            {
+                double off = std::fmod(lon[k[0]] + lonLo - grid_.lon0Deg, 360.0);
+                if (off < 0)
+                    off += 360.0;
+                if (!global_ && off > targetSpanDeg + 0.5 * (360.0 - targetSpanDeg))
+                    off -= 360.0; // the quad starts west of the target's first column
+                c0 = static_cast<long>(std::ceil(off / grid_.dLonDeg - 1e-9));
+                c1 = static_cast<long>(std::floor((off + lonHi - lonLo) / grid_.dLonDeg + 1e-9));
+                if (!global_)
+                {
+                    c0 = std::max(c0, 0L);
+                    c1 = std::min(c1, long(grid_.nLon) - 1);
+                }
+            }
+            // Where the two kinds of quads meet their edges differ slightly: a small tolerance closes the gap.
+            const double tolerance = poleLat > kGnomonicAboveDeg - 1.0 ? 1e-3 : 1e-9;
+            for (long r = std::max(r0, 0L); r <= std::min(r1, long(grid_.nLat) - 1); ++r)
+                for (long cc = c0; cc <= c1; ++cc)
+                {
+                    const auto col = size_t(((cc % long(grid_.nLon)) + long(grid_.nLon)) % long(grid_.nLon));
+                    QuadPosition& cell = cells_[size_t(r) * grid_.nLon + col];
+                    if (cell.quad != kOutside)
+                        continue; // already inside a neighbouring quad (shared edge)
+                    const Vec3 t{cosLat[size_t(r)] * cosLon[col], cosLat[size_t(r)] * sinLon[col], sinLat[size_t(r)]};
+                    Point tp{};
                     double a = 0, b = 0;
-                    if (!inverseBilinear(p, p00, p10, p01, p11, a, b))
+                    if (!plane(t, grid_.lat0Deg + double(r) * grid_.dLatDeg,
+                               grid_.lon0Deg + double(col) * grid_.dLonDeg, tp) ||
+                        !inverseBilinear(tp, p[0], p[1], p[2], p[3], a, b, tolerance))
                         continue;
-                    a = std::clamp(a, 0.0, 1.0);
-                    b = std::clamp(b, 0.0, 1.0);
-                    w.index = {uint32_t(j * nx + i), uint32_t(j * nx + i + 1), uint32_t((j + 1) * nx + i),
-                               uint32_t((j + 1) * nx + i + 1)};
-                    w.weight = {float((1 - a) * (1 - b)), float(a * (1 - b)), float((1 - a) * b), float(a * b)};
-                    if (w.weight[0] + w.weight[1] + w.weight[2] + w.weight[3] <= 0)
-                        w.weight[0] = 1e-30f;  // degenerate but inside: keep it marked
+                    cell.quad = uint32_t(j * nx + i);
+                    cell.a = float(std::clamp(a, 0.0, 1.0));
+                    cell.b = float(std::clamp(b, 0.0, 1.0));
                 }
         }
     grid_.lon0Deg = wrapLongitudeDeg(grid_.lon0Deg);
@@ -133,18 +341,26 @@ CurvilinearResampler::CurvilinearResampler(const std::vector<float>& latDeg, con
 
 std::vector<float> CurvilinearResampler::resample(const std::vector<float>& source) const
 {
-    std::vector<float> out(weights_.size(), NAN);
-    for (size_t t = 0; t < weights_.size(); ++t)
+    std::vector<float> out(cells_.size(), NAN);
+    for (size_t t = 0; t < cells_.size(); ++t)
     {
-        const Weights& w = weights_[t];
+        const QuadPosition& cell = cells_[t];
+        if (cell.quad == kOutside)
+            continue;
+        const size_t i = cell.quad % nx_;
+        const size_t row = cell.quad - i;
+        const size_t i1 = i + 1 < nx_ ? i + 1 : 0;
+        const float a = cell.a, b = cell.b;
+        const std::array<size_t, 4> k{row + i, row + i1, row + nx_ + i, row + nx_ + i1};
+        const std::array<float, 4> w{(1 - a) * (1 - b), a * (1 - b), (1 - a) * b, a * b};
         float sum = 0, wsum = 0;
-        for (size_t k = 0; k < 4; ++k)
+        for (size_t q = 0; q < 4; ++q)
         {
-            const float v = source[w.index[k]];
-            if (w.weight[k] > 0 && std::isfinite(v))
+            const float x = source[k[q]];
+            if (std::isfinite(x))
             {
-                sum += w.weight[k] * v;
-                wsum += w.weight[k];
+                sum += w[q] * x;
+                wsum += w[q];
             }
         }
         if (wsum > 0)
@@ -156,9 +372,9 @@ std::vector<float> CurvilinearResampler::resample(const std::vector<float>& sour
 double CurvilinearResampler::coveredFraction() const
 {
     size_t inside = 0;
-    for (const Weights& w : weights_)
-        inside += (w.weight[0] + w.weight[1] + w.weight[2] + w.weight[3] > 0) ? 1u : 0u;
-    return weights_.empty() ? 0.0 : double(inside) / double(weights_.size());
+    for (const QuadPosition& c : cells_)
+        inside += c.quad != kOutside ? 1u : 0u;
+    return cells_.empty() ? 0.0 : double(inside) / double(cells_.size());
 }
 
-}  // namespace sky
+} // namespace sky

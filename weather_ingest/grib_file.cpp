@@ -6,6 +6,8 @@
 
 #include <eccodes.h>
 
+#include <stdexcept>
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -55,7 +57,13 @@ public:
         return v;
     }
 
-    double getDoubleOr(const char* key) const { return has(key) ? getDouble(key) : std::nan(""); }
+    double getDoubleOr(const char* key) const { return has(key) && !missing(key) ? getDouble(key) : std::nan(""); }
+
+    bool missing(const char* key) const
+    {
+        int err = 0;
+        return codes_is_missing(h_, key, &err) != 0 && err == CODES_SUCCESS;
+    }
 
     std::string getString(const char* key) const
     {
@@ -80,6 +88,52 @@ private:
     int number_;
 };
 
+std::string format(const char* fmt, double a, double b = 0, double c = 0)
+{
+    char buf[160];
+    std::snprintf(buf, sizeof buf, fmt, a, b, c);
+    return buf;
+}
+
+/// Grid type, size, resolution and projection, from whichever of ecCodes' keys the grid has.
+std::string describeGrid(const KeyReader& k, const std::string& gridType)
+{
+    std::string d = gridType;
+    const double ni = k.getDoubleOr("Ni"), nj = k.getDoubleOr("Nj");
+    const double points = k.getDoubleOr("numberOfDataPoints");
+    if (std::isfinite(ni) && std::isfinite(nj))
+        d += format(" %.0f x %.0f", ni, nj);
+    else if (std::isfinite(points))
+        d += format(" %.0f points", points) + (std::isfinite(nj) ? format(" in %.0f rows", nj) : "");
+    const double dx = k.getDoubleOr("DxInMetres"), dy = k.getDoubleOr("DyInMetres");
+    const double di = k.getDoubleOr("iDirectionIncrementInDegrees"), dj = k.getDoubleOr("jDirectionIncrementInDegrees");
+    const double gaussN = gridType.find("_gg") != std::string::npos ? k.getDoubleOr("N") : std::nan("");
+    if (std::isfinite(dx) && dx > 0)
+        d += format(", %.4g x %.4g km", dx / 1000.0, (std::isfinite(dy) ? dy : dx) / 1000.0);
+    else if (std::isfinite(gaussN) && gaussN > 0)
+        d += std::string(", ") + (k.getLong("isOctahedral", 0) != 0 ? "O" : "N") +
+             format("%.0f (~%.3g deg)", gaussN, 90.0 / gaussN);
+    else if (std::isfinite(di) && std::isfinite(dj))
+        d += format(", %.4g x %.4g deg", di, dj);
+    if (gridType == "lambert" || gridType == "lambert_lam")
+        d += format(", standard parallels %g/%g, LoV %g", k.getDoubleOr("Latin1InDegrees"),
+                    k.getDoubleOr("Latin2InDegrees"), k.getDoubleOr("LoVInDegrees"));
+    else if (gridType == "polar_stereographic")
+        d += format(", LoV %g, ", k.getDoubleOr("orientationOfTheGridInDegrees")) +
+             (k.getLong("southPoleOnProjectionPlane", 0) != 0 ? "south" : "north") + " pole";
+    else if (gridType.find("rotated") != std::string::npos)
+        d += format(", south pole of rotation %g, %g", k.getDoubleOr("latitudeOfSouthernPoleInDegrees"),
+                    k.getDoubleOr("longitudeOfSouthernPoleInDegrees"));
+    const double lat1 = k.getDoubleOr("latitudeOfFirstGridPointInDegrees"),
+                 lon1 = k.getDoubleOr("longitudeOfFirstGridPointInDegrees");
+    if (gridType == "regular_ll")
+        d += format(", lat %g .. %g", lat1, k.getDoubleOr("latitudeOfLastGridPointInDegrees")) +
+             format(", lon %g .. %g", lon1, k.getDoubleOr("longitudeOfLastGridPointInDegrees"));
+    else if (std::isfinite(lat1) && std::isfinite(lon1))
+        d += format(", first point %g, %g", lat1, lon1);
+    return d;
+}
+
 GribMessageInfo readInfo(grib_handle* h, const std::string& file, int number)
 {
     const KeyReader k(h, file, number);
@@ -98,12 +152,9 @@ GribMessageInfo readInfo(grib_handle* h, const std::string& file, int number)
     const long time = k.getLong("validityTime");
     info.validTimeUnixS = unixTimeFromCivil(int(date / 10000), int(date / 100 % 100), int(date % 100),
                                             int(time / 100), int(time % 100), 0);
-    char grid[200];
-    std::snprintf(grid, sizeof grid, "%s %ld x %ld, lat %g .. %g, lon %g .. %g", info.gridType.c_str(),
-                  k.getLong("Ni", 0), k.getLong("Nj", 0), k.getDoubleOr("latitudeOfFirstGridPointInDegrees"),
-                  k.getDoubleOr("latitudeOfLastGridPointInDegrees"), k.getDoubleOr("longitudeOfFirstGridPointInDegrees"),
-                  k.getDoubleOr("longitudeOfLastGridPointInDegrees"));
-    info.gridDescription = grid;
+    info.gridDescription = describeGrid(k, info.gridType);
+    info.gridKey = k.getString("md5GridSection");
+    info.uvRelativeToGrid = k.getLong("uvRelativeToGrid", 0) != 0;
     // Steps in hours whatever unit the message uses; a message that refuses the unit keeps its own.
     codes_set_string(h, "stepUnits", "h", nullptr);
     if (k.has("startStep") && k.has("endStep"))
@@ -120,17 +171,12 @@ GribMessage::~GribMessage() = default;
 GribMessage::GribMessage(GribMessage&&) noexcept = default;
 GribMessage& GribMessage::operator=(GribMessage&&) noexcept = default;
 
-GridField GribMessage::decode(size_t maxCells) const
+GridField GribMessage::decodeRegular(size_t maxCells) const
 {
     grib_handle* h = handle_.get();
     const std::string where = messageLocation(info_.number);
     const std::string field = info_.label();
     const KeyReader k(h, file_, info_.number);
-    if (info_.gridType != "regular_ll")
-        throw IngestError(IngestErrorKind::UnsupportedGrid, file_, where, field,
-                          "grid type '" + info_.gridType +
-                              "' is not supported: only regular latitude/longitude (regular_ll) GRIB grids are read; "
-                              "regrid first (e.g. cdo remapbil or ecCodes/MIR)");
     const long ni = k.getLong("Ni");
     const long nj = k.getLong("Nj");
     if (ni < 1 || nj < 1 || double(ni) * double(nj) > double(maxCells))
@@ -222,6 +268,189 @@ GridField GribMessage::decode(size_t maxCells) const
         out.values[j * uni + column] = missing || invalid ? NAN : static_cast<float>(v);
     }
     return out;
+}
+
+GridField GribMessage::decode(size_t maxCells) const
+{
+    GribGridCache grids;
+    return decode(maxCells, grids);
+}
+
+GridField GribMessage::decode(size_t maxCells, GribGridCache& grids, std::shared_ptr<const GribGrid>* gridOut) const
+{
+    const std::string where = messageLocation(info_.number);
+    const std::string field = info_.label();
+    std::shared_ptr<const GribGrid> grid = grids.find(info_.gridKey);
+    if (info_.gridType == "regular_ll")
+    {
+        GridField out = decodeRegular(maxCells);
+        if (!grid || !sameGrid(grid->target(), out.grid))
+        {
+            grid = std::make_shared<const GribGrid>(out.grid, info_.gridDescription);
+            grids.add(info_.gridKey, grid);
+        }
+        if (gridOut)
+            *gridOut = grid;
+        return out;
+    }
+    if (!grid)
+    {
+        const GribGridPoints points = locatePoints(maxCells);
+        try
+        {
+            grid = std::make_shared<const GribGrid>(points, maxCells);
+        }
+        catch (const std::length_error&)
+        {
+            throw IngestError(IngestErrorKind::TooLarge, file_, where, field,
+                              "grid " + info_.gridDescription + ": resampled onto a regular grid it exceeds " +
+                                  std::to_string(maxCells) + " cells");
+        }
+        catch (const std::invalid_argument& e)
+        {
+            throw IngestError(IngestErrorKind::UnsupportedGrid, file_, where, field,
+                              "grid " + info_.gridDescription + ": " + e.what());
+        }
+        grids.add(info_.gridKey, grid);
+    }
+    grib_handle* h = handle_.get();
+    const KeyReader k(h, file_, info_.number);
+    const long dataPoints = k.getLong("numberOfDataPoints", -1);
+    const long codedValues = k.getLong("numberOfCodedValues", dataPoints);
+    const long bitsPerValue = k.getLong("bitsPerValue", 0);
+    size_t count = 0;
+    k.check(codes_get_size(h, "values", &count), "values");
+    if (dataPoints < 0 || size_t(dataPoints) != grid->sourcePoints() || count != grid->sourcePoints() ||
+        codedValues < 0 || codedValues > dataPoints || bitsPerValue < 0 || bitsPerValue > 64)
+        throw IngestError(IngestErrorKind::Corrupt, file_, where, field,
+                          "grid " + info_.gridDescription +
+                              ": inconsistent sizes: " + std::to_string(grid->sourcePoints()) + " grid points, " +
+                              std::to_string(dataPoints) + " data points, " + std::to_string(count) + " values, " +
+                              std::to_string(codedValues) + " coded values");
+    k.check(codes_set_double(h, "missingValue", kMissingSentinel), "missingValue");
+    std::vector<double> raw(count);
+    size_t got = count;
+    k.check(codes_get_double_array(h, "values", raw.data(), &got), "values");
+    if (got != count)
+        throw IngestError(IngestErrorKind::Corrupt, file_, where, field, "short read of values");
+    const bool bitmap = k.getLong("bitmapPresent", 0) != 0;
+    GridField out;
+    for (double& v : raw)
+    {
+        const bool missing = bitmap && v == kMissingSentinel;
+        const bool invalid = !missing && !std::isfinite(v);
+        out.invalidCount += invalid ? 1u : 0u;
+        if (missing || invalid)
+            v = NAN;
+    }
+    out.grid = grid->target();
+    out.values = grid->resample(raw);
+    if (gridOut)
+        *gridOut = grid;
+    return out;
+}
+
+GribGridPoints GribMessage::locatePoints(size_t maxCells) const
+{
+    grib_handle* h = handle_.get();
+    const std::string where = messageLocation(info_.number);
+    const std::string field = info_.label();
+    const std::string grid = "grid " + info_.gridDescription;
+    const KeyReader k(h, file_, info_.number);
+    const auto unsupported = [&](const std::string& why)
+    { return IngestError(IngestErrorKind::UnsupportedGrid, file_, where, field, grid + ": " + why); };
+    const auto corrupt = [&](const std::string& why)
+    { return IngestError(IngestErrorKind::Corrupt, file_, where, field, grid + ": " + why); };
+    GribGridPoints p;
+    p.gridType = info_.gridType;
+    p.description = info_.gridDescription;
+    const long dataPoints = k.getLong("numberOfDataPoints", -1);
+    if (dataPoints < 4 || size_t(dataPoints) > maxCells)
+        throw IngestError(IngestErrorKind::TooLarge, file_, where, field,
+                          grid + ": " + std::to_string(dataPoints) + " points is too few or exceeds " +
+                              std::to_string(maxCells));
+    if (info_.gridType == "lambert" || info_.gridType == "lambert_lam")
+    {
+        // Cone constant n (Snyder, "Map Projections: A Working Manual", eq. 15-3); n = 0 (parallels
+        // symmetric about the equator, or on it) is a cylinder, not a cone.
+        constexpr double kPi = 3.14159265358979323846;
+        constexpr double kRad = kPi / 180.0;
+        const double p1 = k.getDoubleOr("Latin1InDegrees") * kRad, p2 = k.getDoubleOr("Latin2InDegrees") * kRad;
+        const double n = std::abs(p1 - p2) < 1e-9
+                             ? std::sin(p1)
+                             : std::log(std::cos(p1) / std::cos(p2)) /
+                                   std::log(std::tan(0.25 * kPi + 0.5 * p2) / std::tan(0.25 * kPi + 0.5 * p1));
+        if (!std::isfinite(n) || std::abs(n) < 1e-6 || std::abs(n) > 1.0 + 1e-9)
+            throw unsupported("degenerate Lambert cone: standard parallels " + std::to_string(p1 / kRad) + " and " +
+                              std::to_string(p2 / kRad) + " give cone constant " + std::to_string(n) +
+                              " (they must lie in one hemisphere, off the equator)");
+    }
+    // ecCodes sizes its iterator from these keys without checking them against each other.
+    if (k.has("pl") && info_.gridType.rfind("reduced", 0) == 0)
+    {
+        size_t rows = 0;
+        k.check(codes_get_size(h, "pl", &rows), "pl");
+        p.pl.resize(rows);
+        size_t got = rows;
+        if (rows > 0)
+            k.check(codes_get_long_array(h, "pl", p.pl.data(), &got), "pl");
+        long sum = 0;
+        for (const long count : p.pl)
+            sum += count > 0 ? count : 0;
+        p.nj = rows;
+        if (rows < 2 || sum != dataPoints)
+            throw corrupt("inconsistent sizes: the " + std::to_string(rows) + " row lengths (pl) add up to " +
+                          std::to_string(sum) + " points, the message declares " + std::to_string(dataPoints));
+    }
+    else if (!k.has("Ni") || !k.has("Nj") || k.missing("Ni") || k.missing("Nj"))
+    {
+        throw unsupported("ecCodes cannot locate its points (no rows and columns: spectral or unstructured); only "
+                          "grids whose points ecCodes can iterate are read");
+    }
+    else
+    {
+        const long ni = k.getLong("Ni", -1);
+        const long nj = k.missing("Nj") ? -1 : k.getLong("Nj", -1);
+        if (ni < 2 || nj < 2 || double(ni) * double(nj) != double(dataPoints))
+            throw corrupt("inconsistent sizes: " + std::to_string(ni) + " x " + std::to_string(nj) +
+                          " points declared, the message has " + std::to_string(dataPoints) + " data points");
+        p.ni = size_t(ni);
+        p.nj = size_t(nj);
+    }
+    size_t count = 0;
+    k.check(codes_get_size(h, "values", &count), "values");
+    if (count != size_t(dataPoints))
+        throw corrupt(std::to_string(count) + " values for " + std::to_string(dataPoints) + " data points");
+    p.iScansNegatively = k.getLong("iScansNegatively", 0) != 0;
+    p.jPointsAreConsecutive = k.getLong("jPointsAreConsecutive", 0) != 0;
+    p.alternativeRowScanning = k.getLong("alternativeRowScanning", 0) != 0;
+
+    int err = 0;
+    codes_iterator* it = codes_grib_iterator_new(h, 0, &err);
+    if (!it || err != CODES_SUCCESS)
+    {
+        if (it)
+            codes_grib_iterator_delete(it);
+        throw unsupported(std::string("ecCodes cannot locate its points (") + codes_get_error_message(err) +
+                          "); only grids whose points ecCodes can iterate are read (not spectral or unstructured)");
+    }
+    p.latDeg.reserve(count);
+    p.lonDeg.reserve(count);
+    double lat = 0, lon = 0, value = 0;
+    while (p.latDeg.size() <= count && codes_grib_iterator_next(it, &lat, &lon, &value) > 0)
+    {
+        p.latDeg.push_back(lat);
+        p.lonDeg.push_back(lon);
+    }
+    codes_grib_iterator_delete(it);
+    if (p.latDeg.size() != count)
+        throw corrupt("ecCodes located " + std::to_string(p.latDeg.size()) + " points for " + std::to_string(count) +
+                      " values");
+    for (size_t i = 0; i < count; ++i)
+        if (!std::isfinite(p.latDeg[i]) || !std::isfinite(p.lonDeg[i]) || std::abs(p.latDeg[i]) > 90.0 + 1e-6)
+            throw unsupported("ecCodes gives point " + std::to_string(i + 1) + " no valid position (" +
+                              std::to_string(p.latDeg[i]) + ", " + std::to_string(p.lonDeg[i]) + ")");
+    return p;
 }
 
 GribFile::GribFile(const std::string& path) : path_(path)

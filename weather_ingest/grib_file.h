@@ -4,6 +4,7 @@
 // file, the message number (1-based) and the key or field.
 #pragma once
 
+#include "weather_ingest/grib_grid.h"
 #include "weather_ingest/regular_grid.h"
 
 #include <cstdint>
@@ -32,7 +33,9 @@ struct GribMessageInfo
     int64_t validTimeUnixS = 0; ///< validity date and time
     double accumulationHours = 0;  ///< endStep - startStep (hours) for accumulated/averaged fields, else 0
     std::string stepRange;      ///< e.g. "120", "114-120"
-    std::string gridDescription;  ///< e.g. "regular_ll 144 x 73, lat 90 .. -90, lon 0 .. 357.5" (for info)
+    std::string gridDescription;   ///< grid type, size, resolution, e.g. "lambert 1799 x 1059, 3 km, ..." (for info)
+    std::string gridKey;           ///< checksum of the grid section: messages with equal keys share a grid
+    bool uvRelativeToGrid = false; ///< vector components along the grid's x/y axes, not east/north
 
     std::string label() const { return shortName + "/" + typeOfLevel + "/" + std::to_string(level); }
 };
@@ -49,15 +52,24 @@ public:
     const GribMessageInfo& info() const { return info_; }
 
     /// Decodes the values onto a regular lat/lon grid in canonical order (any scanning mode, any
-    /// longitude convention; points missing from the bitmap become NaN).
+    /// longitude convention; points missing from the bitmap become NaN). Regular lat/lon grids are
+    /// taken as they are; every other grid whose points ecCodes can locate is resampled (GribGrid).
     ///
     /// @param[in] maxCells refuse grids larger than this (IngestErrorKind::TooLarge).
-    /// @return the field. Throws IngestError: UnsupportedGrid for anything but regular_ll, TooLarge,
-    ///   Corrupt when the grid keys and the number of values disagree or ecCodes fails.
+    /// @param[in,out] grids grids already located; a new grid is added.
+    /// @param[out] grid optional: the grid the field is on.
+    /// @return the field. Throws IngestError naming the grid: UnsupportedGrid when ecCodes cannot locate
+    ///   the points (spectral, unstructured…) or the projection is degenerate, TooLarge, Corrupt when
+    ///   the grid keys and the number of values disagree or ecCodes fails.
+    GridField decode(size_t maxCells, GribGridCache& grids, std::shared_ptr<const GribGrid>* grid = nullptr) const;
+
+    /// As above with a cache of its own (one message).
     GridField decode(size_t maxCells) const;
 
 private:
     friend class GribFile;
+    GridField decodeRegular(size_t maxCells) const;
+    GribGridPoints locatePoints(size_t maxCells) const;
     struct HandleDeleter
     {
         void operator()(grib_handle* h) const;

@@ -50,9 +50,12 @@ private:
             if (r->row.role != role)
                 continue;
             std::vector<float> v = r->field.values;
-            if (scale != 1.0f)
+            // Cloud cover on levels comes as a fraction (ECMWF cc) or in % (ICON CLC).
+            const float unit =
+                role == GribRole::LevelCloudCover && r->info.units.find('%') != std::string::npos ? 0.01f : 1.0f;
+            if (scale * unit != 1.0f)
                 for (float& x : v)
-                    x *= scale;
+                    x *= scale * unit;
             s.addLevel(r->levelPa, v);
             note(r);
         }
@@ -151,8 +154,24 @@ void GribMapper::heights(size_t layerIndex, LayerKind kind, GribRole bottomRole,
         s.provenance["layers/" + std::to_string(layerIndex) + "/baseAltitudeM"] = bottom->source;
         s.provenance["layers/" + std::to_string(layerIndex) + "/topAltitudeM"] = top->source;
     }
-    const GribRecord* cbh = kind == LayerKind::Low ? find(GribRole::CloudBaseHeight) : nullptr;
+    // The lowest cloud base (ECMWF cbh / ICON ceiling above ground, HRRR gh on cloudBase above sea level)
+    // belongs to the low layer, or to the middle one where there is no low cloud.
+    const GribRecord* cbh = kind != LayerKind::Convective ? find(GribRole::CloudBaseHeight) : nullptr;
+    const GribRecord* baseMsl = kind != LayerKind::Convective ? find(GribRole::CloudBaseHeightMsl) : nullptr;
+    const GribRecord* topMsl = kind == LayerKind::Low ? find(GribRole::CloudTopHeightMsl) : nullptr;
     std::vector<float> cbhM = cbh ? values(cbh, -1000.0f, 30000.0f) : std::vector<float>();
+    const std::vector<float> baseMslM = baseMsl ? values(baseMsl, -1000.0f, 30000.0f) : std::vector<float>();
+    const std::vector<float> topMslM = topMsl ? values(topMsl, -1000.0f, 30000.0f) : std::vector<float>();
+    const std::vector<float>& lowCover = s.layers[kLowLayer].coverage;
+    const std::vector<float>& middleCover = s.layers[kMiddleLayer].coverage;
+    const auto lowest = [&](size_t i) { return kind == LayerKind::Low || !(lowCover[i] >= kMinCloudCoverage); };
+    if (cbh && kind == LayerKind::Middle)
+        s.provenance["layers/1/baseAltitudeM"] = cbh->source + " where no low cloud";
+    if (baseMsl)
+        s.provenance["layers/" + std::to_string(layerIndex) + "/baseAltitudeM"] =
+            baseMsl->source + (kind == LayerKind::Middle ? " where no low cloud" : "");
+    if (topMsl)
+        s.provenance["layers/0/topAltitudeM"] = topMsl->source + " where there is no middle cloud";
     const LayerDefaults def = layerDefaults(kind);
     const double bandLow = kind == LayerKind::Low ? 1e9 : kEcmwfLowTopPa;
     const double bandHigh = kind == LayerKind::Low ? kEcmwfLowTopPa : kEcmwfMiddleTopPa;
@@ -180,13 +199,21 @@ void GribMapper::heights(size_t layerIndex, LayerKind kind, GribRole bottomRole,
                 l.topAltitudeM[i] = pressureToAltitudeM(heightM_, i, def.topPa);
                 ++defaulted;
             }
-            if (!cbhM.empty() && std::isfinite(cbhM[i]))
+            const float depthM = l.topAltitudeM[i] - l.baseAltitudeM[i];
+            if (!cbhM.empty() && std::isfinite(cbhM[i]) && lowest(i))
             {
                 const float groundM = ground_.empty() || !std::isfinite(ground_[i]) ? 0.0f : ground_[i];
-                const float depthM = l.topAltitudeM[i] - l.baseAltitudeM[i];
                 l.baseAltitudeM[i] = groundM + cbhM[i];
                 l.topAltitudeM[i] = std::max(l.topAltitudeM[i], l.baseAltitudeM[i] + std::max(depthM, 300.0f));
             }
+            else if (!baseMslM.empty() && std::isfinite(baseMslM[i]) && lowest(i))
+            {
+                l.baseAltitudeM[i] = baseMslM[i];
+                l.topAltitudeM[i] = std::max(l.topAltitudeM[i], l.baseAltitudeM[i] + std::max(depthM, 300.0f));
+            }
+            if (!topMslM.empty() && std::isfinite(topMslM[i]) && topMslM[i] > l.baseAltitudeM[i] &&
+                !(middleCover[i] >= kMinCloudCoverage))
+                l.topAltitudeM[i] = topMslM[i];
         }
         if (!windU_.empty() && !windV_.empty())
         {
@@ -323,6 +350,8 @@ WeatherSnapshot GribMapper::run()
     heights(kConvectiveLayer, LayerKind::Convective, GribRole::PresConvBottom, GribRole::PresConvTop, s);
     highLayer(s);
 
+    if (const GribRecord* vis = find(GribRole::Visibility))
+        s.provenance["visibility"] = vis->source + " (read, not rendered yet)";
     if (const GribRecord* cape = find(GribRole::Cape))
     {
         s.capeJKg = values(cape, 0.0f, 20000.0f);

@@ -23,11 +23,32 @@ struct GribOutField
                                      ///< an empty grid keeps the sample's grid and values
     bool iScansNegatively = false;   ///< write columns east to west
     bool jScansPositively = false;   ///< write rows south to north (grid.dLatDeg is then taken positive)
-    std::vector<double> values;      ///< grid.cellCount() values in canonical order; NaN -> bitmap hole
+    std::vector<double> values;      ///< grid.cellCount() values in canonical order; NaN -> bitmap hole. With an
+                                     ///< empty grid (one set through keys, e.g. gridType lambert): the
+                                     ///< values in that grid's scanning order
     long bitsPerValue = 16;
     std::string packingType;         ///< e.g. "grid_ieee" (empty: the sample's)
     bool nanAsValue = false;         ///< write NaN as a value (IEEE packing), not as a bitmap hole (tests)
 };
+
+/// Grid kinds of writeCloudDiscFixture().
+enum class FixtureGrid
+{
+    Lambert,             ///< 60 x 50 at 20 km, tangent at the disc's latitude, centred near the disc
+    LambertTwoParallels, ///< the same with standard parallels 7° south and 5° north of it
+    PolarNorth,          ///< 60 x 60 at 50 km round the north pole (true at 60° N)
+    PolarSouth,          ///< the same round the south pole
+    Rotated,             ///< 81 x 61 at 0.25° on a grid rotated to the south pole (-40, 10): centred at 50° N, 10° E
+    ReducedGaussian,     ///< ecCodes' global N32 reduced Gaussian sample
+};
+
+/// Writes one GRIB2 message of low cloud cover (NCEP tcc on lowCloudLayer, %) on a grid of the given kind,
+/// made from Debian's ecCodes samples: coveragePercent within radiusKm of (latDeg, lonDeg) as ecCodes
+/// locates the points, 0 elsewhere. For tests (e.g. a geo-reference check per grid type); throws
+/// IngestError(Output). lambertScale multiplies the Lambert grids' points per side and divides their spacing.
+void writeCloudDiscFixture(const std::string& path, FixtureGrid kind, double latDeg, double lonDeg, double radiusKm,
+                           double coveragePercent, bool iScansNegatively = false, bool jScansPositively = true,
+                           int lambertScale = 1);
 
 /// Writes all fields into one GRIB file (not atomic: for tests and the benchmark).
 /// Throws IngestError(Output) naming the field and key when ecCodes refuses something.

@@ -2,6 +2,7 @@
 #include "weather_ingest/ingest.h"
 
 #include "weather_ingest/grib_mapping.h"
+#include "weather_ingest/grid_composite.h"
 #include "weather_ingest/ingest_error.h"
 #include "weather_ingest/netcdf_file.h"
 #include "weather_ingest/snapshot_file.h"
@@ -54,6 +55,57 @@ std::string looksLike(const std::vector<uint8_t>& b)
     return text ? "a text file" : "unknown binary data";
 }
 
+bool isCover(GribRole role)
+{
+    return role == GribRole::CoverLow || role == GribRole::CoverMiddle || role == GribRole::CoverHigh ||
+           role == GribRole::CoverConvective || role == GribRole::CoverBoundaryLayer;
+}
+
+/// The snapshot of one valid time: one per grid the records are on, then composited.
+WeatherSnapshot mapTime(const std::vector<const GribRecord*>& records, const MappingOptions& options,
+                        std::vector<std::string>& warnings)
+{
+    std::vector<std::vector<const GribRecord*>> groups;
+    for (const GribRecord* r : records)
+    {
+        auto it = std::find_if(groups.begin(), groups.end(),
+                               [&](const auto& g) { return sameGrid(g.front()->field.grid, r->field.grid); });
+        if (it == groups.end())
+            groups.push_back({r});
+        else
+            it->push_back(r);
+    }
+    std::vector<WeatherSnapshot> parts;
+    for (const std::vector<const GribRecord*>& g : groups)
+    {
+        const bool hasCover = std::any_of(g.begin(), g.end(), [](const GribRecord* r) { return isCover(r->row.role); });
+        const std::string gridName = g.front()->grid ? g.front()->grid->description() : "?";
+        if (!hasCover)
+        {
+            if (groups.size() > 1)
+            {
+                warnings.push_back(g.front()->source + " and " + std::to_string(g.size() - 1) +
+                                   " other messages on grid " + gridName + " not used: no cloud cover on that grid");
+                continue;
+            }
+        }
+        WeatherSnapshot s = mapGribRecords(g, options, warnings);
+        if (const std::shared_ptr<const GribGrid>& grid = g.front()->grid)
+        {
+            s.dataWeight = grid->dataWeight();
+            s.provenance["grid"] =
+                gridName + (grid->gridType() == "regular_ll"
+                                ? ""
+                                : " -> regular " + std::to_string(s.grid.nLon) + " x " + std::to_string(s.grid.nLat) +
+                                      " at " + std::to_string(s.grid.dLatDeg) + " deg");
+        }
+        parts.push_back(std::move(s));
+    }
+    if (parts.empty())
+        return mapGribRecords(records, options, warnings); // names what is missing
+    return compositeSnapshots(std::move(parts), kMaxCompositeCells, warnings);
+}
+
 }  // namespace
 
 InputFormat detectFormat(const std::string& path)
@@ -83,6 +135,7 @@ ConvertResult convertFiles(const std::vector<std::string>& paths, const MappingO
 {
     ConvertResult result;
     std::deque<std::vector<GribRecord>> gribFiles;  // deque: pointers into it stay valid
+    GribGridCache grids;
     const double perFile = 0.9 / double(std::max<size_t>(paths.size(), 1));
     for (size_t fi = 0; fi < paths.size(); ++fi)
     {
@@ -95,7 +148,7 @@ ConvertResult convertFiles(const std::vector<std::string>& paths, const MappingO
         if (detectFormat(path) == InputFormat::Grib)
         {
             GribFile file(path);
-            gribFiles.push_back(readGribRecords(file, kMaxSnapshotCells, fileProgress));
+            gribFiles.push_back(readGribRecords(file, kMaxSnapshotCells, fileProgress, grids));
         }
         else
         {
@@ -114,7 +167,7 @@ ConvertResult convertFiles(const std::vector<std::string>& paths, const MappingO
     {
         if (progress)
             progress(0.9 + 0.1 * double(done++) / double(byTime.size()), "mapping " + isoTime(time));
-        result.snapshots.push_back(mapGribRecords(records, options, result.warnings));
+        result.snapshots.push_back(mapTime(records, options, result.warnings));
     }
     std::stable_sort(result.snapshots.begin(), result.snapshots.end(),
                      [](const WeatherSnapshot& a, const WeatherSnapshot& b) { return a.validTimeUnixS < b.validTimeUnixS; });
@@ -144,7 +197,7 @@ std::string describeGrib(const std::string& path)
 {
     GribFile file(path);
     GribMessage m;
-    std::map<std::string, int> grids, times, editions;
+    std::map<std::string, int> grids, times, editions, mappings;
     std::map<GribRole, std::vector<GribMessageInfo>> used;
     std::map<std::string, int> unused;
     int count = 0;
@@ -155,6 +208,7 @@ std::string describeGrib(const std::string& path)
         ++grids[info.gridDescription];
         ++times[isoTime(info.validTimeUnixS)];
         ++editions["GRIB" + std::to_string(info.edition)];
+        ++mappings[mappingName(info.centre, info.gridType)];
         if (const auto row = gribRoleOf(info))
             used[row->role].push_back(info);
         else
@@ -168,7 +222,11 @@ std::string describeGrib(const std::string& path)
     s += "\ngrids:\n";
     for (const auto& [g, n] : grids)
         s += "  " + g + "  [" + std::to_string(n) + " messages]" +
-             (g.rfind("regular_ll", 0) == 0 ? "" : "  <- NOT SUPPORTED (only regular_ll)") + "\n";
+             (g.rfind("regular_ll", 0) == 0 ? "" : "  (resampled to a regular lat/lon grid)") + "\n";
+    s += "mapping:     ";
+    for (const auto& [name, n] : mappings)
+        s += name + " names [" + std::to_string(n) + " messages]  ";
+    s += "\n";
     s += "valid times:\n";
     for (const auto& [t, n] : times)
         s += "  " + t + "  [" + std::to_string(n) + " messages]\n";

@@ -11,14 +11,14 @@ namespace sky
 
 enum class IngestErrorKind
 {
-    Io,               ///< the file cannot be opened or read (missing, permission, I/O error)
-    NotRecognized,    ///< neither GRIB nor NetCDF (empty file, PNG renamed .grib2…)
-    Corrupt,          ///< recognised but damaged: truncated message, decoder error
-    UnsupportedGrid,  ///< a grid type we do not resample (reduced Gaussian, rotated, spectral…) or mixed grids
-    TooLarge,         ///< an absurd grid size (over kMaxSnapshotCells) or dimension
-    MissingFields,    ///< none of the fields a cloud layer needs
-    BadValues,        ///< values outside physical ranges: coverage beyond [0, 100] %, NaN, base above top
-    Output,           ///< the snapshot could not be written
+    Io,              ///< the file cannot be opened or read (missing, permission, I/O error)
+    NotRecognized,   ///< neither GRIB nor NetCDF (empty file, PNG renamed .grib2…)
+    Corrupt,         ///< recognised but damaged: truncated message, decoder error
+    UnsupportedGrid, ///< a grid ecCodes cannot locate (spectral, unstructured) or a degenerate projection
+    TooLarge,        ///< an absurd grid size (over kMaxSnapshotCells) or dimension
+    MissingFields,   ///< none of the fields a cloud layer needs
+    BadValues,       ///< values outside physical ranges: coverage beyond [0, 100] %, NaN, base above top
+    Output,          ///< the snapshot could not be written
 };
 
 /// Thrown by sky_ingest functions (documented per function). what() is the full message.

@@ -63,6 +63,7 @@ std::vector<ArrayRef> listArrays(WeatherSnapshot& s)
     refs.push_back({"high/windNorthMS", &s.high.windNorthMS, nullptr, n});
     refs.push_back({"capeJKg", &s.capeJKg, nullptr, n});
     refs.push_back({"tropopauseAltitudeM", &s.tropopauseAltitudeM, nullptr, n});
+    refs.push_back({"dataWeight", &s.dataWeight, nullptr, n}); // version 2
     for (size_t i = 0; i < s.levelFields.size(); ++i)
         refs.push_back({"levelFields/" + std::to_string(i) + "/values", &s.levelFields[i].values, nullptr,
                         n * s.levelFields[i].pressurePa.size()});
@@ -195,6 +196,14 @@ bool gridError(const LatLonGrid& g, std::string& error)
     return true;
 }
 
+uint32_t versionFor(const std::vector<WeatherSnapshot>& snapshots)
+{
+    for (const WeatherSnapshot& s : snapshots)
+        if (!s.dataWeight.empty())
+            return kSnapshotFormatVersion;
+    return kSnapshotFormatOldestVersion;
+}
+
 bool parseSnapshots(const uint8_t* mem, std::FILE* file, uint64_t totalBytes, const uint8_t* header,
                     const std::string& name, std::vector<WeatherSnapshot>& out, std::string& error)
 {
@@ -212,9 +221,11 @@ bool parseSnapshots(const uint8_t* mem, std::FILE* file, uint64_t totalBytes, co
     const uint32_t payloadCrc = loadLe<uint32_t>(header + 24);
     if (crc32c(header, 28) != loadLe<uint32_t>(header + 28))
         return fail(error, name, "header checksum mismatch (corrupted file)");
-    if (version != kSnapshotFormatVersion)
-        return fail(error, name, "format version " + std::to_string(version) + " is not supported (this build reads " +
-                                     std::to_string(kSnapshotFormatVersion) + ")");
+    if (version < kSnapshotFormatOldestVersion || version > kSnapshotFormatVersion)
+        return fail(error, name,
+                    "format version " + std::to_string(version) + " is not supported (this build reads " +
+                        std::to_string(kSnapshotFormatOldestVersion) + " to " + std::to_string(kSnapshotFormatVersion) +
+                        ")");
     if (payloadBytes != totalBytes - kHeaderBytes)
         return fail(error, name,
                     (payloadBytes > totalBytes - kHeaderBytes ? "truncated: header says " : "trailing data: header says ") +
@@ -248,7 +259,7 @@ bool parseSnapshots(const uint8_t* mem, std::FILE* file, uint64_t totalBytes, co
                 const std::string type = a.at("type").get<std::string>();
                 const uint64_t n = a.at("count").get<uint64_t>();
                 auto it = std::find_if(refs.begin(), refs.end(), [&](const ArrayRef& r) { return r.name == arrayName; });
-                if (it == refs.end())
+                if (it == refs.end() || (version < 2 && arrayName == "dataWeight"))
                     return fail(error, where, "unknown array '" + arrayName + "'");
                 if (type != (it->f32 ? "f32" : "u8") || n != it->expectedCount || arraySize(*it) != 0)
                     return fail(error, where, "array '" + arrayName + "' has a wrong type, count or is repeated");
@@ -311,6 +322,9 @@ bool validateSnapshot(const WeatherSnapshot& snapshot, std::string& error)
                 if (t > kMaxCloudType)
                     return fail(error, a.name, "cloud type " + std::to_string(t) + " is not a WMO genus (0..10)");
     }
+    for (const float w : snapshot.dataWeight)
+        if (!(w >= 0.0f && w <= 1.0f))
+            return fail(error, "dataWeight", "value " + std::to_string(w) + " outside [0, 1]");
     return true;
 }
 
@@ -383,7 +397,7 @@ bool writeSnapshotFile(const std::string& path, const std::vector<WeatherSnapsho
         }
     }
     std::memcpy(header, kMagic, 8);
-    const uint32_t version = kSnapshotFormatVersion;
+    const uint32_t version = versionFor(snapshots);
     const auto count = static_cast<uint32_t>(snapshots.size());
     std::memcpy(header + 8, &version, 4);
     std::memcpy(header + 12, &count, 4);

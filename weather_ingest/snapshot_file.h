@@ -26,8 +26,12 @@
 namespace sky
 {
 
-/// Version written by writeSnapshotFile(); readSnapshotFile() accepts exactly this version.
-inline constexpr uint32_t kSnapshotFormatVersion = 1;
+/// Newest version: 2 adds the optional per-cell array "dataWeight" (WeatherSnapshot::dataWeight).
+/// writeSnapshotFile() writes version 1 (byte-identical to older builds) when no snapshot has a
+/// dataWeight, else version 2; readSnapshotFile() reads both.
+inline constexpr uint32_t kSnapshotFormatVersion = 2;
+/// Oldest version readSnapshotFile() accepts.
+inline constexpr uint32_t kSnapshotFormatOldestVersion = 1;
 
 /// Largest grid a snapshot may hold (cells): 0.05° global is 25.9 M cells. Larger grids are refused
 /// on write and read, so a corrupt header cannot make the reader allocate gigabytes.
@@ -39,7 +43,7 @@ inline constexpr uint32_t kMaxSnapshotsPerFile = 4096;
 /// Checks that a snapshot is self-consistent: a sane grid (nLat, nLon >= 1, cellCount <=
 /// kMaxSnapshotCells, finite lat0/lon0/dLat, dLon > 0, every latitude within [-90, 90]), at most
 /// kMaxCloudLayers layers, every non-empty vector of grid.cellCount() values (level fields:
-/// pressurePa.size() * cellCount), cloud types <= 10.
+/// pressurePa.size() * cellCount), cloud types <= 10, dataWeight within [0, 1].
 ///
 /// @param[in] snapshot the snapshot to check.
 /// @param[out] error what is wrong (names the field), untouched on success.

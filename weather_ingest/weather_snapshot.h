@@ -15,6 +15,11 @@
 //  - Coverage: fraction [0,1]. Precipitation rate: mm/h (equivalently kg m^-2 h^-1). CAPE: J/kg.
 //    Wind: m/s, positive towards east (U) and north (V).
 //  - Missing values: NaN in a field means "unknown" and is treated as no cloud by the renderer.
+//  - No data: a regional model covers only part of its grid. dataWeight (optional) says, per cell, how much
+//    of the weather there is this snapshot's: 1 inside the model's domain, 0 outside it (every field NaN
+//    there), and a smooth ramp from 0 to 1 over the outer 5 % of the domain. A renderer blends
+//    coverage * dataWeight + (what another source says there, else clear sky) * (1 - dataWeight), so a
+//    domain edge is soft, not a wall. Empty: 1 everywhere (a global model).
 #pragma once
 
 #include <array>
@@ -103,6 +108,7 @@ struct WeatherSnapshot
     std::vector<float> tropopauseAltitudeM;    ///< m above ellipsoid, may be empty
     std::map<std::string, std::string> provenance;  ///< field name -> where it came from (file, message, variable)
     std::vector<PressureLevelField> levelFields;    ///< optional 3D fields (added by weather_ingest), may be empty
+    std::vector<float> dataWeight;                  ///< [0,1] per cell, see "No data" above; empty = 1 everywhere
 };
 
 }  // namespace sky

@@ -193,12 +193,15 @@ void resampleRows(const ResampleJob& job, uint32_t firstRow, uint32_t endRow)
                                azimuthDeg, scale);
             const GridSample s = sampler.sample(latDeg, lonDeg);
             const float capeJKg = interpolate(snapshot.capeJKg, s, cells, 0.0f);
+            // Outside a regional model's domain there is no data: clear sky, faded in over its soft edge.
+            const float dataWeight = std::clamp(interpolate(snapshot.dataWeight, s, cells, 1.0f), 0.0f, 1.0f);
 
             for (size_t k = 0; k < layerCount; ++k)
             {
                 const CloudLayerFields& layer = snapshot.layers[k];
                 glm::vec4& shape = out.texels[out.index(uint32_t(2 * k), i, j)];
-                shape.x = interpolateCoverage(layer.coverage, layer.baseAltitudeM, layer.topAltitudeM, s, cells);
+                shape.x =
+                    dataWeight * interpolateCoverage(layer.coverage, layer.baseAltitudeM, layer.topAltitudeM, s, cells);
                 shape.y = interpolate(layer.baseAltitudeM, s, cells, 0.0f);
                 shape.z = interpolate(layer.topAltitudeM, s, cells, 0.0f);
                 shape.w = nearestType(layer.type, s, cells);
@@ -212,7 +215,7 @@ void resampleRows(const ResampleJob& job, uint32_t firstRow, uint32_t endRow)
                 out.texels[out.index(uint32_t(2 * k + 1), i, j)].w = capeJKg;
 
             glm::vec4& highShape = out.texels[out.index(WEATHER_WINDOW_HIGH_SLICE, i, j)];
-            highShape.x = interpolateCoverage(high.coverage, high.altitudeM, high.altitudeM, s, cells);
+            highShape.x = dataWeight * interpolateCoverage(high.coverage, high.altitudeM, high.altitudeM, s, cells);
             highShape.y = interpolate(high.altitudeM, s, cells, 0.0f);
             highShape.z = nearestType(high.type, s, cells);
             glm::vec4& highDynamics = out.texels[out.index(WEATHER_WINDOW_HIGH_SLICE + 1, i, j)];

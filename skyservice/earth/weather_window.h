@@ -12,7 +12,9 @@
 //    of the interpolation (the remaining corners are re-weighted) and, when all four are NaN, take a
 //    default (0, or 11000 m for the tropopause);
 //  - a layer that is absent, or whose coverage, base or top vector does not have one value per cell,
-//    gives coverage 0; other missing vectors give their defaults.
+//    gives coverage 0; other missing vectors give their defaults;
+//  - every coverage is multiplied by the snapshot's dataWeight (bilinear; absent = 1), so outside a
+//    regional model's domain the sky is clear and its edge fades in over the domain's outer 5 %.
 #pragma once
 
 #include "shaders/shared/weather_window.h"

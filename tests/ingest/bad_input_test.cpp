@@ -139,24 +139,6 @@ TEST(BadInput, NanThatIsNotAMissingValue)
     EXPECT_NE(o.message.find("NaN"), std::string::npos) << o.message;
 }
 
-TEST(BadInput, ReducedGaussianGridIsRefusedByName)
-{
-    GribOutField f;
-    f.sample = "reduced_gg_pl_32_grib2";
-    const std::string path = test::tempPath("gg.grib2");
-    f.keys = {{"centre", "kwbc"}, {"typeOfLevel", "lowCloudLayer"}, {"shortName", "tcc"}};
-    writeGribFile(path, {f});  // empty grid: the sample's reduced Gaussian grid stays
-    GribFile file(path);
-    GribMessage m;
-    ASSERT_TRUE(file.next(m));
-    if (m.info().gridType == "regular_ll")
-        GTEST_SKIP() << "ecCodes turned the sample into regular_ll";
-    const Outcome o = convert(path);
-    ASSERT_TRUE(o.failed);
-    EXPECT_EQ(o.kind, IngestErrorKind::UnsupportedGrid);
-    EXPECT_NE(o.message.find("reduced_gg"), std::string::npos) << o.message;
-}
-
 TEST(BadInput, AbsurdGridSizeIsRefusedBeforeDecoding)
 {
     const std::string path = writeFixture("big.grib2", test::gfsLikeFields(test::smallGlobalGrid()));
@@ -173,7 +155,7 @@ TEST(BadInput, AbsurdGridSizeIsRefusedBeforeDecoding)
     }
 }
 
-TEST(BadInput, FieldsOnDifferentGrids)
+TEST(BadInput, FieldsOnDifferentGridsCombineAndTheFinerWins)
 {
     std::vector<GribOutField> f = test::gfsLikeFields(test::smallGlobalGrid());
     LatLonGrid other = test::smallGlobalGrid();
@@ -181,9 +163,14 @@ TEST(BadInput, FieldsOnDifferentGrids)
     other.dLonDeg = 40;
     f[2].grid = other;
     f[2].values.assign(other.cellCount(), 10);
-    const Outcome o = convert(writeFixture("mixed.grib2", f));
-    ASSERT_TRUE(o.failed);
-    EXPECT_EQ(o.kind, IngestErrorKind::UnsupportedGrid);
+    const ConvertResult r = convertFiles({writeFixture("mixed.grib2", f)}, MappingOptions{}, {});
+    ASSERT_EQ(r.snapshots.size(), 1u);
+    const WeatherSnapshot& s = r.snapshots[0];
+    EXPECT_EQ(s.grid.nLon, 18u); // the finer of the two global grids
+    EXPECT_TRUE(s.dataWeight.empty());
+    // Convective cover exists only on the coarser grid (10 %); the finer one has none there: 0 wins.
+    EXPECT_NEAR(s.layers[2].coverage[40], 0.0f, 1e-6f);
+    EXPECT_NEAR(s.layers[0].coverage[40], 0.6f, 1e-3f);
 }
 
 TEST(BadInput, GribWithoutCloudFields)

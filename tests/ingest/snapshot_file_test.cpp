@@ -167,3 +167,45 @@ TEST(SnapshotFile, ValidationRefusesAbsurdGridsAndTypes)
 
 }  // namespace
 }  // namespace sky
+
+namespace sky
+{
+namespace
+{
+
+// Format 2 adds only the optional dataWeight array: files without it stay version 1 (readable by older
+// builds), files with it are version 2 and round-trip it; a weight outside [0, 1] is refused.
+TEST(SnapshotFile, DataWeightIsVersionTwoAndVersionOneStaysReadable)
+{
+    const WeatherSnapshot plain = test::makeSnapshot(1000, 0.5f);
+    WeatherSnapshot regional = test::makeSnapshot(2000, 0.5f);
+    regional.dataWeight.assign(regional.grid.cellCount(), 1.0f);
+    regional.dataWeight[0] = 0.0f;
+    regional.dataWeight[1] = 0.25f;
+    const std::string v1 = test::tempPath("v1.skywx"), v2 = test::tempPath("v2.skywx");
+    std::string error;
+    ASSERT_TRUE(writeSnapshotFile(v1, {plain}, error)) << error;
+    ASSERT_TRUE(writeSnapshotFile(v2, {plain, regional}, error)) << error;
+    const auto version = [](const std::string& path) {
+        const std::vector<uint8_t> b = test::readBytes(path);
+        uint32_t v = 0;
+        std::memcpy(&v, b.data() + 8, 4);
+        return v;
+    };
+    EXPECT_EQ(version(v1), 1u);
+    EXPECT_EQ(version(v2), 2u);
+    std::vector<WeatherSnapshot> back;
+    ASSERT_TRUE(readSnapshotFile(v1, back, error)) << error;
+    EXPECT_TRUE(back.at(0).dataWeight.empty());
+    ASSERT_TRUE(readSnapshotFile(v2, back, error)) << error;
+    EXPECT_TRUE(back.at(0).dataWeight.empty());
+    EXPECT_EQ(back.at(1).dataWeight, regional.dataWeight);
+
+    WeatherSnapshot bad = regional;
+    bad.dataWeight[2] = 1.5f;
+    EXPECT_FALSE(validateSnapshot(bad, error));
+    EXPECT_NE(error.find("dataWeight"), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace sky

@@ -2,7 +2,9 @@
 // sky-ingest-bench: the speed benchmark of issue 3 (README "Speed"). Writes a global 0.25° (1440 x 721)
 // GFS-like GRIB2 file with ecCodes, regridded bilinearly from the 2.5° sample's fields that the mapping
 // uses, then times `sky-ingest convert` on it in a child process (wall time and peak RSS from wait4) and
-// the snapshot load. Not a test: timings depend on the machine.
+// the snapshot load. With --grid hrrr it writes instead an HRRR-sized Lambert conformal file (1799 x 1059
+// at 3 km, the CONUS grid's keys, 40 messages of the fields the HRRR mapping uses, smooth synthetic values,
+// grid-relative winds) and times its conversion (issue 23). Not a test: timings depend on the machine.
 #include "weather_ingest/grib_fields.h"
 #include "weather_ingest/grib_writer.h"
 #include "weather_ingest/ingest_error.h"
@@ -11,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <set>
@@ -60,6 +63,79 @@ size_t writeInput(const std::string& samplePath, const std::string& out, const s
     return fields.size();
 }
 
+/// Writes the HRRR-like Lambert input; returns the number of fields written.
+size_t writeHrrrInput(const std::string& out)
+{
+    constexpr long kNx = 1799, kNy = 1059;
+    const std::vector<std::pair<std::string, std::string>> grid = {{"gridType", "lambert"},
+                                                                   {"Nx", "1799"},
+                                                                   {"Ny", "1059"},
+                                                                   {"DxInMetres", "3000"},
+                                                                   {"DyInMetres", "3000"},
+                                                                   {"LaDInDegrees", "38.5"},
+                                                                   {"LoVInDegrees", "262.5"},
+                                                                   {"Latin1InDegrees", "38.5"},
+                                                                   {"Latin2InDegrees", "38.5"},
+                                                                   {"latitudeOfFirstGridPointInDegrees", "21.138123"},
+                                                                   {"longitudeOfFirstGridPointInDegrees", "237.280472"},
+                                                                   {"iScansNegatively", "0"},
+                                                                   {"jScansPositively", "1"}};
+    struct Spec
+    {
+        const char* shortName;
+        const char* typeOfLevel;
+        long level;
+        double base, amplitude;
+    };
+    std::vector<Spec> specs = {{"lcc", "lowCloudLayer", 0, 40, 40},     {"mcc", "middleCloudLayer", 0, 30, 30},
+                               {"hcc", "highCloudLayer", 0, 50, 45},    {"tcc", "entireAtmosphere", 0, 60, 40},
+                               {"gh", "cloudBase", 0, 1500, 800},       {"gh", "cloudCeiling", 0, 2000, 900},
+                               {"gh", "cloudTop", 0, 6000, 3000},       {"cape", "surface", 0, 800, 700},
+                               {"prate", "surface", 0, 0.0004, 0.0004}, {"vis", "surface", 0, 20000, 15000}};
+    const long levels[] = {1000, 925, 850, 700, 600, 500, 400, 300, 250, 200};
+    for (const long hPa : levels)
+    {
+        const double z = 44330.8 * (1.0 - std::pow(double(hPa) / 1013.25, 0.190263)); // ICAO, for plausible gh
+        specs.push_back({"gh", "isobaricInhPa", hPa, z, 50});
+        specs.push_back({"u", "isobaricInhPa", hPa, 10 + 0.002 * z, 10});
+        specs.push_back({"v", "isobaricInhPa", hPa, 2, 8});
+    }
+    const std::string part = out + ".part";
+    std::FILE* dst = std::fopen(out.c_str(), "wb");
+    if (!dst)
+        throw sky::IngestError(sky::IngestErrorKind::Output, out, "", "", "cannot create");
+    for (size_t n = 0; n < specs.size(); ++n)
+    {
+        const Spec& sp = specs[n];
+        sky::GribOutField f;
+        f.keys = {{"centre", "kwbc"},
+                  {"dataDate", "20240301"},
+                  {"dataTime", "1200"},
+                  {"typeOfLevel", sp.typeOfLevel},
+                  {"level", std::to_string(sp.level)},
+                  {"shortName", sp.shortName}};
+        f.keys.insert(f.keys.end(), grid.begin(), grid.end());
+        if (sp.shortName == std::string("u") || sp.shortName == std::string("v"))
+            f.keys.push_back({"uvRelativeToGrid", "1"});
+        f.values.resize(size_t(kNx * kNy));
+        for (long j = 0; j < kNy; ++j)
+            for (long i = 0; i < kNx; ++i)
+                f.values[size_t(j * kNx + i)] =
+                    sp.base + sp.amplitude * std::sin(double(i) * 0.011 + double(n)) * std::cos(double(j) * 0.017);
+        sky::writeGribFile(part, {f});
+        std::FILE* src = std::fopen(part.c_str(), "rb");
+        char buf[1 << 16];
+        size_t got = 0;
+        while (src && (got = std::fread(buf, 1, sizeof buf, src)) > 0)
+            std::fwrite(buf, 1, got, dst);
+        if (src)
+            std::fclose(src);
+    }
+    std::fclose(dst);
+    std::remove(part.c_str());
+    return specs.size();
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -69,18 +145,24 @@ int main(int argc, char** argv)
     std::string work = "/tmp/sky-ingest-bench";
     std::string tool = (std::filesystem::path(argv[0]).parent_path() / "sky-ingest").string();
     std::string packing = "grid_simple";
+    std::string gridKind = "gfs";
     app.add_option("--sample", sample, "2.5 degree GFS sample to regrid");
     app.add_option("--workdir", work, "where the input and snapshot go");
     app.add_option("--sky-ingest", tool, "sky-ingest executable to time");
     app.add_option("--packing", packing, "GRIB2 packing of the input (grid_simple, grid_complex_spatial_differencing, ...)");
+    app.add_option("--grid", gridKind,
+                   "gfs: global 0.25 degree regular grid; hrrr: 1799 x 1059 Lambert conformal at 3 km")
+        ->check(CLI::IsMember({"gfs", "hrrr"}));
     CLI11_PARSE(app, argc, argv);
     try
     {
         std::filesystem::create_directories(work);
-        const std::string input = work + "/gfs-0p25-" + packing + ".grib2";
-        const std::string output = work + "/gfs-0p25.skywx";
+        const bool hrrr = gridKind == "hrrr";
+        const std::string input = hrrr ? work + "/hrrr-lambert-3km.grib2" : work + "/gfs-0p25-" + packing + ".grib2";
+        const std::string output = work + (hrrr ? "/hrrr.skywx" : "/gfs-0p25.skywx");
         const auto t0 = Clock::now();
-        const size_t nFields = writeInput(sample, input, packing);
+        const size_t nFields = hrrr ? writeHrrrInput(input) : writeInput(sample, input, packing);
+        const double pointsPerField = hrrr ? 1799.0 * 1059.0 : 1440.0 * 721.0;
         std::printf("input: %s, %zu fields, %.1f MB, written in %.1f s\n", input.c_str(), nFields,
                     double(std::filesystem::file_size(input)) / 1e6, secondsSince(t0));
 
@@ -103,7 +185,7 @@ int main(int argc, char** argv)
         const double cpuS = double(usage.ru_utime.tv_sec) + double(usage.ru_utime.tv_usec) * 1e-6 +
                             double(usage.ru_stime.tv_sec) + double(usage.ru_stime.tv_usec) * 1e-6;
         const double peakMb = double(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
-        const double decodedMb = double(nFields) * 1440.0 * 721.0 * 4.0 / (1024.0 * 1024.0);
+        const double decodedMb = double(nFields) * pointsPerField * 4.0 / (1024.0 * 1024.0);
 
         double loadS = 1e9;
         std::vector<sky::WeatherSnapshot> snapshots;
