@@ -51,11 +51,16 @@ if(TARGET sky-service-bench)
     add_test(NAME bench.service_json COMMAND ${CMAKE_COMMAND} -DJSON=${SKY_BENCH_TMP}/service.json -DFRAMES=4
              -DTRANSPORTS=shm,vulkan -P ${CMAKE_CURRENT_LIST_DIR}/bench/check_service_json.cmake)
     set_tests_properties(bench.service_json PROPERTIES DEPENDS bench.service_small)
-    # Layers other than display are refused until subscriptions carry them; a malformed size is a usage
-    # error that names the argument. Neither starts a daemon.
-    add_test(NAME bench.service_layers_not_yet COMMAND ${SKY_BENCH_EXPECT} 2 "layer \"depth\" is not served yet"
-             ${SKY_SERVICE_BENCH_BIN} --scene clear --layers display,depth)
-    set_tests_properties(bench.service_layers_not_yet PROPERTIES LABELS cpu)
+    # The compositing layers reach the client (each subscribed layer is read; one missing fails the run).
+    add_test(NAME bench.service_layers COMMAND ${SKY_BENCH_EXPECT} 0 "^clear +160x90 +shm "
+             ${SKY_SERVICE_BENCH_BIN} --scene clear --size 160x90 --frames 3 --warmup 1 --transport shm
+             --layers display,sky,clouds,depth)
+    set_tests_properties(bench.service_layers PROPERTIES TIMEOUT 180)
+    # Layers travel in shared memory only; a malformed size is a usage error that names the argument.
+    # Neither starts a daemon.
+    add_test(NAME bench.service_layers_shm_only COMMAND ${SKY_BENCH_EXPECT} 2 "published in shared memory only"
+             ${SKY_SERVICE_BENCH_BIN} --scene clear --layers display,depth --transport both)
+    set_tests_properties(bench.service_layers_shm_only PROPERTIES LABELS cpu)
     add_test(NAME bench.service_bad_size COMMAND ${SKY_BENCH_EXPECT} 2 "--size 1920by1080: expected WIDTHxHEIGHT"
              ${SKY_SERVICE_BENCH_BIN} --size 1920by1080)
     set_tests_properties(bench.service_bad_size PROPERTIES LABELS cpu)

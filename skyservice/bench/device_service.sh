@@ -11,11 +11,23 @@
 # bench writes its synthetic weather with sky_weather, which needs neither), then runs the plan below
 # and writes service-*.json, bench-reprojected-*.json, clocks.csv and service-log.txt to $OUT.
 # Knobs (environment): SKY_SVC_RUNS (which runs, default all of them, in this order:
-# "1080p 1080p-shadow 4k 640 rate1000 sky-bench baseline"), SKY_SVC_FRAMES (timed frames per scene, size and
+# "1080p 1080p-layers 1080p-shadow 4k 640 rate1000 sky-bench baseline"; "before" runs 1080p shm with an
+# earlier tree prepared with `prepare-before REV`, the frame path before a change, in the same call), SKY_SVC_FRAMES (timed frames per scene, size and
 # transport; default 300), SKY_SVC_SCENES (default all), SKY_SVC_LIMIT_S (each run's time limit, default
 # 150 s), SKY_SVC_BUILD=0 (reuse /tmp/build from an earlier call on the same warm machine). A device call
 # lasts at most 10 minutes: with a slow frame path, lower SKY_SVC_FRAMES or split SKY_SVC_RUNS over calls.
 set -u
+if [ "${1:-}" = prepare-before ]; then  # REV [BUILD]: .gpu/before/{src,spirv} from git revision REV
+  set -e
+  REV=${2:?a git revision}; BUILD=${3:-build-before}
+  rm -rf .gpu/before && mkdir -p .gpu/before/src
+  git archive "$REV" | tar -x -C .gpu/before/src
+  cmake -S .gpu/before/src -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKY_BUILD_TESTS=OFF > /dev/null
+  cmake --build "$BUILD" --target sky_shaders -j2
+  cp -r "$BUILD/spirv" .gpu/before/spirv
+  du -sh .gpu/before
+  exit 0
+fi
 if [ "${1:-}" = prepare ]; then
   set -e
   BUILD=${2:-build-bench}
@@ -51,6 +63,18 @@ if [ "${SKY_SVC_BUILD:-1}" != 0 ]; then
   fi
 fi
 SB=/tmp/build/skyservice/sky-service-bench; BENCH=/tmp/build/skyservice/sky-bench
+configure() {  # SRC BUILD SPIRV
+  timeout 60 cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKY_BUILD_TESTS=OFF \
+    -DSKY_BUILD_INGEST=OFF -DSKY_PREBUILT_SPIRV_DIR="$3" -DVulkan_INCLUDE_DIR=$G/include \
+    -DVulkan_LIBRARY=/usr/lib/x86_64-linux-gnu/libvulkan.so.1 -DCMAKE_PREFIX_PATH=$P/usr \
+    -DCMAKE_MODULE_PATH=$P/usr/share/cmake/geographiclib "-DCMAKE_CXX_FLAGS=-isystem $P/usr/include" \
+    -DPKG_CONFIG_EXECUTABLE=$P/usr/bin/pkgconf -DCMAKE_POLICY_VERSION_MINIMUM=3.5 > /tmp/cfg-before.log 2>&1
+}
+if [ -d "$G/before/src" ] && [ "${SKY_SVC_BUILD:-1}" != 0 ]; then
+  if configure "$G/before/src" /tmp/build-before "$G/before/spirv" &&
+     timeout 300 cmake --build /tmp/build-before --target skyservice sky-service-bench -j16 > /tmp/build-before.log 2>&1
+  then el "built the earlier tree (.gpu/before)"; else el "earlier tree: build FAILED"; tail -30 /tmp/build-before.log; fi
+fi
 
 # Does the loader find the NVIDIA driver? If not, point it at the ICD (GPU.md).
 probe() { timeout 120 $SB --scene clear --size 64x64 --frames 2 --warmup 1 --transport both --device NVIDIA \
@@ -74,9 +98,18 @@ svc() {  # LABEL OPTIONS...
     --json "$OUT/service-$label.json" "$@"
   el "sky-service-bench $label rc=$?"
 }
-for run in ${SKY_SVC_RUNS:-1080p 1080p-shadow 4k 640 rate1000 sky-bench baseline}; do
+svcBefore() {  # LABEL OPTIONS...: the earlier tree's daemon and bench, with its own SPIR-V
+  local label=$1; shift
+  el "earlier tree: sky-service-bench $label: $*"
+  SKY_SPIRV_DIR=$G/before/spirv timeout "$LIMIT" /tmp/build-before/skyservice/sky-service-bench --scene "$SCENES" \
+    --warmup 10 --device NVIDIA --json "$OUT/service-before-$label.json" "$@"
+  el "earlier tree: sky-service-bench $label rc=$?"
+}
+for run in ${SKY_SVC_RUNS:-1080p 1080p-layers 1080p-shadow 4k 640 rate1000 sky-bench baseline}; do
   case $run in
     1080p) svc 1920x1080 --size 1920x1080 --transport both ;;
+    1080p-layers) svc 1920x1080-layers --size 1920x1080 --layers display,sky,clouds,depth ;;
+    before) svcBefore 1920x1080 --size 1920x1080 --frames ${SKY_SVC_BEFORE_FRAMES:-30} ;;
     1080p-shadow) svc 1920x1080-shadow1024 --size 1920x1080 --shadow-map 1024 ;;
     4k) svc 3840x2160 --size 3840x2160 ;;
     640) svc 640x360 --size 640x360 ;;

@@ -56,7 +56,7 @@ class Session
             out.timelineSemaphore = wait_.hasSemaphore();
             return true;
         }
-        if (sky_client_subscribe_shm(c_.get()) != SKY_OK)
+        if (sky_client_subscribe_shm_layers(c_.get(), s_.layers) != SKY_OK)
         {
             error = c_.why("subscribe shm");
             return false;
@@ -109,6 +109,18 @@ class Session
             return false;
         }
         touchPages(frame.pixels, size_t(frame.row_bytes) * frame.height);
+        for (uint32_t k = 1; k < SKY_LAYER_COUNT; ++k)
+        {
+            if ((s_.layers & (1u << k)) == 0)
+                continue;
+            if (frame.layers[k].pixels == nullptr)
+            {
+                error = "the shared-memory frame " + std::to_string(frame.frame_id) + " lacks layer " +
+                        std::to_string(k) + " it subscribed to";
+                return false;
+            }
+            touchPages(frame.layers[k].pixels, size_t(frame.layers[k].row_bytes) * frame.height);
+        }
         if (frame.shadow_transmittance != nullptr)
             touchPages(reinterpret_cast<const uint8_t*>(frame.shadow_transmittance),
                        size_t(frame.shadow_size) * frame.shadow_size * sizeof(float));

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "skyservice/bench/service_report.h"
+#include "skyservice/ipc/shm_layout.h"
 
 #include <string>
 #include <sys/types.h>
@@ -24,6 +25,7 @@ struct ServiceRunSettings
     BenchScene scene;
     uint32_t width = 320, height = 180;
     std::string transport = "shm"; ///< "shm" or "vulkan"
+    uint32_t layers = 1u << SKY_LAYER_DISPLAY; ///< shm: the layers subscribed (bit k = SKY_LAYER_k); each is read
     uint32_t frames = 300, warmup = 30;
     double speedMps = 250;      ///< request mode: eye speed along its heading
     bool onRequest = true;      ///< false: the service renders at its own rate, the client only waits

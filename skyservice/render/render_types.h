@@ -167,6 +167,17 @@ struct ViewRequest
     uint32_t readback = kReadEverything;
 };
 
+/// Where a shadow map lies on the earth, typed (RenderResult::shadowMap has the same as JSON with prose):
+/// the azimuthal equidistant projection centred on the eye (skyservice/render/shadow_map.h).
+struct ShadowMapReference
+{
+    double centreLatDeg = 0, centreLonDeg = 0;  ///< projection centre (degrees)
+    double extentM = 0;                         ///< edge length of the square on the ground (m)
+    double cornerLatDeg[4] = {}, cornerLonDeg[4] = {};  ///< outer corners NW, NE, SE, SW (degrees)
+    double keyLightAzimuthDeg = 0, keyLightElevationDeg = 0;  ///< the sun, or the moon at night
+    bool keyLightIsMoon = false;
+};
+
 /// Pixels and facts of a finished render. Images are row-major, top row first.
 struct RenderResult
 {
@@ -210,6 +221,7 @@ struct RenderResult
     std::vector<float> shadowTransmittance;   ///< key-light transmittance through the clouds [0, 1]
     std::vector<float> shadowOpticalDepth;    ///< cloud optical depth along the light ray (capped at 12)
     nlohmann::json shadowMap;                 ///< metadata: projection, corners, sun, valid time
+    ShadowMapReference shadowReference;       ///< the same geo-reference, typed (for the frame ring)
 };
 
 }  // namespace sky

@@ -272,6 +272,7 @@ SkyStatus finishView(Renderer& r, FrameTicket& ticket, RenderResult& result, boo
     result.marchBlockReason = ticket.facts.marchBlockReason;
     result.shadowMapSize = ticket.shadow.recorded ? ticket.facts.shadowMapSize : 0;
     result.shadowMap = ticket.shadow.recorded ? std::move(ticket.facts.shadowMap) : nlohmann::json();
+    result.shadowReference = ticket.facts.shadowReference;
     result.gpuMs.clear();
     collectFrame(r, frame, ticket.request, ticket.reprojected, ticket.lightVolume,
                  copyPixels ? ticket.plan : FrameReadbackPlan{}, result);

@@ -206,6 +206,18 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
     facts.shadowMapSize = size;
     facts.shadowMap = shadowMapMetadata(g, sunMoon, camera.localEarthRadiusM, request.unixTimeS,
                                         r.weather->validTimeUnixS);
+    ShadowMapReference& ref = facts.shadowReference;
+    ref.centreLatDeg = g.centreLatDeg;
+    ref.centreLonDeg = g.centreLonDeg;
+    ref.extentM = g.extentM;
+    const double half = 0.5 * g.extentM;
+    const glm::dvec2 corners[4] = {{-half, half}, {half, half}, {half, -half}, {-half, -half}};  // NW NE SE SW
+    for (int i = 0; i < 4; ++i)
+        g.toLatLon(corners[i], ref.cornerLatDeg[i], ref.cornerLonDeg[i]);
+    ref.keyLightIsMoon = moonIsKeyLight(sunMoon);
+    const CelestialPosition& key = ref.keyLightIsMoon ? sunMoon.moon : sunMoon.sun;
+    ref.keyLightAzimuthDeg = key.azimuthDeg;
+    ref.keyLightElevationDeg = key.elevationDeg;
 }
 
 void collectShadowMap(const Renderer& r, const FrameContext& frame, const ShadowMapReadback& readback,

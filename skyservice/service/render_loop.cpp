@@ -26,33 +26,24 @@ double lonToRange(double lonDeg)
     return (l < 0 ? l + 360.0 : l) - 180.0;
 }
 
-double jsonNumber(const nlohmann::json& j, const char* a, const char* b)
-{
-    if (j.contains(a) && j[a].contains(b) && j[a][b].is_number())
-        return j[a][b].get<double>();
-    return 0;
-}
-
 SkyShmShadowGeoRef shadowGeoRef(const RenderResult& result)
 {
     SkyShmShadowGeoRef g{};
     if (result.shadowMapSize == 0)
         return g;
-    const nlohmann::json& j = result.shadowMap;
-    g.centre_lat_deg = jsonNumber(j, "centre", "latDeg");
-    g.centre_lon_deg = jsonNumber(j, "centre", "lonDeg");
-    g.extent_m = j.value("extentM", 0.0);
-    const char* corners[4] = {"northWest", "northEast", "southEast", "southWest"};
+    const ShadowMapReference& ref = result.shadowReference;
+    g.centre_lat_deg = ref.centreLatDeg;
+    g.centre_lon_deg = ref.centreLonDeg;
+    g.extent_m = ref.extentM;
     for (int i = 0; i < 4; ++i)
     {
-        const nlohmann::json& c = j.contains("corners") ? j["corners"] : nlohmann::json::object();
-        g.corner_lat_deg[i] = jsonNumber(c, corners[i], "latDeg");
-        g.corner_lon_deg[i] = jsonNumber(c, corners[i], "lonDeg");
+        g.corner_lat_deg[i] = ref.cornerLatDeg[i];
+        g.corner_lon_deg[i] = ref.cornerLonDeg[i];
     }
-    g.sun_azimuth_deg = jsonNumber(j, "keyLightDirection", "azimuthDeg");
-    g.sun_elevation_deg = jsonNumber(j, "keyLightDirection", "elevationDeg");
+    g.sun_azimuth_deg = ref.keyLightAzimuthDeg;
+    g.sun_elevation_deg = ref.keyLightElevationDeg;
     g.size_texels = result.shadowMapSize;
-    g.light_is_moon = j.value("keyLight", std::string()) == "moon" ? 1u : 0u;
+    g.light_is_moon = ref.keyLightIsMoon ? 1u : 0u;
     return g;
 }
 
