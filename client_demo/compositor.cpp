@@ -2,6 +2,7 @@
 #include "client_demo/compositor.h"
 
 #include "client_demo/ground_shading.h"
+#include "client_demo/layer_compositor.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,8 +34,16 @@ GroundLight groundLightOf(const LatestFrame& frame)
     return light;
 }
 
-void compositeFrame(const LatestFrame& frame, const CompositeOptions& options, sky::ImageRgba8& out)
+void compositeFrame(const LatestFrame& frame, const CompositeOptions& options, sky::ImageRgba8& out,
+                    CompositeStats* stats)
 {
+    if (options.mode == CompositeMode::Layers && frame.hasLayers())
+    {
+        compositeLayers(frame, options, out, stats);
+        return;
+    }
+    if (stats)
+        *stats = CompositeStats{};
     out.width = frame.width;
     out.height = frame.height;
     out.pixels = frame.rgba;

@@ -51,6 +51,13 @@ int parseDemoOptions(int argc, char** argv, DemoOptions& o)
     app.add_option("--rate", o.rate, "With --time: simulated seconds per real second (0 = frozen)");
     app.add_option("--step", o.stepS, "Headless: simulated flight seconds between frames")->capture_default_str();
     app.add_option("--frame-timeout-ms", o.frameTimeoutMs, "Longest wait for one frame (ms)")->capture_default_str();
+    const std::map<std::string, CompositeMode> composites{{"layers", CompositeMode::Layers},
+                                                          {"display", CompositeMode::Display}};
+    CLI::Option* compositeOption =
+        app.add_option("--composite", o.composite,
+                       "layers (terrain with relief by depth from the service's sky/clouds/depth layers, shared "
+                       "memory only; the default) | display (flat ground over the finished frame)")
+            ->transform(CLI::CheckedTransformer(composites, CLI::ignore_case));
     bool noGround = false;
     app.add_flag("--no-ground", noGround, "Show the service's frame as it is (no demo ground, no shadows)");
     try
@@ -62,6 +69,17 @@ int parseDemoOptions(int argc, char** argv, DemoOptions& o)
         return app.exit(e) == 0 ? 0 : 2;
     }
     o.ground = !noGround;
+    if (o.transport == Transport::Vulkan && o.composite == CompositeMode::Layers)
+    {
+        // The zero-copy transport exports the display image only (skyclient.h).
+        if (compositeOption->count() > 0)
+        {
+            std::fprintf(stderr, "client_demo: --composite layers needs the shared-memory transport (the vulkan "
+                                 "transport carries the display image only): use --transport shm or auto\n");
+            return 2;
+        }
+        o.composite = CompositeMode::Display;
+    }
     double unused = 0.0;
     if (!o.timeIso.empty() && !parseUtc(o.timeIso, unused))
     {
@@ -72,6 +90,15 @@ int parseDemoOptions(int argc, char** argv, DemoOptions& o)
     if (o.headless && o.frames == 0)
         o.frames = 8;
     return -1;
+}
+
+CompositeOptions compositeOptionsOf(const DemoOptions& o)
+{
+    CompositeOptions c;
+    c.ground = o.ground;
+    c.mode = o.composite;
+    c.terrain = demoMountainAhead(o.aircraft.latDeg, o.aircraft.lonDeg, o.aircraft.headingDeg);
+    return c;
 }
 
 }  // namespace demo

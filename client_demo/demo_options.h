@@ -2,6 +2,7 @@
 // client_demo's command line (README.md lists every option).
 #pragma once
 
+#include "client_demo/compositor.h"
 #include "client_demo/flight_model.h"
 #include "client_demo/skyclient_source.h"
 
@@ -27,6 +28,7 @@ struct DemoOptions
     double rate = 0.0;            ///< simulated s per real s, sent with --time
     double stepS = 1.0;           ///< headless: simulated flight seconds between frames
     bool ground = true;           ///< composite the demo ground
+    CompositeMode composite = CompositeMode::Layers;  ///< layers (shared memory only) or the display frame
     int frameTimeoutMs = 120000;  ///< longest wait for one frame (lavapipe at high quality is slow)
 };
 
@@ -36,6 +38,9 @@ struct DemoOptions
  * @return -1 to go on, else the exit code (0 after --help, 2 for a bad command line).
  **********************************************************************/
 int parseDemoOptions(int argc, char** argv, DemoOptions& options);
+
+/// The compositing the options ask for: the mode, and the demo's mountain ahead of the flight's start.
+CompositeOptions compositeOptionsOf(const DemoOptions& options);
 
 /// The service's default socket: $XDG_RUNTIME_DIR/skyservice.sock, else /tmp/skyservice-<uid>.sock.
 std::string defaultSocketPath();

@@ -26,6 +26,19 @@ struct LatestFrame
     std::vector<float> shadowTransmittance;  ///< shadowSize^2 key-light transmittance (0 opaque, 1 clear),
                                              ///< north row first, west column first
     SkyShmShadowGeoRef shadow{};     ///< where the shadow map lies on the earth, and the key light
+    // Compositing layers (shm_layout.h SKY_LAYER_*), decoded to float; empty when the frame has none (the
+    // Vulkan transport, or a service not asked for them). Linear values are pre-exposed (`exposure`).
+    double exposure = 1.0;           ///< linear values / exposure = W m^-2 sr^-1 nm^-1
+    std::vector<float> skyRgba;      ///< width*height*4: the sky without clouds, linear
+    std::vector<float> cloudsRgba;   ///< width*height*4: the clouds, premultiplied linear radiance + alpha
+    std::vector<float> depthM;       ///< width*height: the clouds' transmittance-weighted distance (m), 0 = none
+
+    /// True when the sky, clouds and depth layers are all present for this frame's size.
+    bool hasLayers() const
+    {
+        const size_t n = size_t(width) * height;
+        return n > 0 && skyRgba.size() == 4 * n && cloudsRgba.size() == 4 * n && depthM.size() == n;
+    }
 };
 
 /// Result of FrameSource::fetch.

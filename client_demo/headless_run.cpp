@@ -25,7 +25,10 @@ nlohmann::json viewJson(const SkyShmView& v)
             {"height", v.height}};
 }
 
-nlohmann::json sidecarOf(const LatestFrame& frame, const Aircraft& aircraft, const std::string& transport)
+const char* compositeName(CompositeMode mode) { return mode == CompositeMode::Layers ? "layers" : "display"; }
+
+nlohmann::json sidecarOf(const LatestFrame& frame, const Aircraft& aircraft, const std::string& transport,
+                         const CompositeStats& stats)
 {
     nlohmann::json j;
     j["frame_id"] = frame.frameId;
@@ -35,6 +38,12 @@ nlohmann::json sidecarOf(const LatestFrame& frame, const Aircraft& aircraft, con
     j["aircraft"] = {{"lat", aircraft.latDeg},         {"lon", aircraft.lonDeg},     {"alt", aircraft.altitudeM},
                      {"heading", aircraft.headingDeg}, {"pitch", aircraft.pitchDeg}, {"speed", aircraft.speedMps}};
     j["transport"] = transport;
+    j["exposure"] = frame.exposure;
+    j["composite"] = compositeName(stats.mode);
+    if (stats.mode == CompositeMode::Layers)
+        j["terrain"] = {{"pixels", stats.terrainPixels},
+                        {"in_front_of_cloud_pixels", stats.terrainInFrontPixels},
+                        {"behind_cloud_pixels", stats.terrainBehindCloudPixels}};
     if (frame.shadowSize > 0)
         j["shadow_map"] = {{"size", frame.shadowSize},
                            {"extent_m", frame.shadow.extent_m},
@@ -75,7 +84,8 @@ int runHeadless(const DemoOptions& o)
     }
     int code = 0;
     {
-        std::unique_ptr<SkyClientSource> source = SkyClientSource::open(o.socketPath, o.transport, vkOrNull, {}, error);
+        std::unique_ptr<SkyClientSource> source = SkyClientSource::open(o.socketPath, o.transport, vkOrNull, {},
+                                                                        o.composite == CompositeMode::Layers, error);
         if (!source)
         {
             std::fprintf(stderr, "client_demo: %s\n", error.c_str());
@@ -89,8 +99,7 @@ int runHeadless(const DemoOptions& o)
             code = 1;
         }
         Aircraft aircraft = o.aircraft;
-        CompositeOptions composite;
-        composite.ground = o.ground;
+        const CompositeOptions composite = compositeOptionsOf(o);
         uint64_t lastId = 0;
         for (unsigned i = 0; code == 0 && i < o.frames; ++i)
         {
@@ -117,7 +126,8 @@ int runHeadless(const DemoOptions& o)
             }
             lastId = frame.frameId;
             sky::ImageRgba8 image;
-            compositeFrame(frame, composite, image);
+            CompositeStats stats;
+            compositeFrame(frame, composite, image, &stats);
             OverlayInfo info;
             info.aircraft = aircraft;
             info.simTimeUnixS = frame.simTimeUnixS;
@@ -128,15 +138,17 @@ int runHeadless(const DemoOptions& o)
             std::snprintf(name, sizeof name, "frame-%04u", i);
             const std::string prefix = (std::filesystem::path(o.outDir) / name).string();
             if (!sky::writePng(prefix + ".png", image, error) ||
-                !sky::writeJsonAtomic(prefix + ".json", sidecarOf(frame, aircraft, source->transportName()), error))
+                !sky::writeJsonAtomic(prefix + ".json", sidecarOf(frame, aircraft, source->transportName(), stats),
+                                      error))
             {
                 std::fprintf(stderr, "client_demo: %s\n", error.c_str());
                 code = 1;
                 break;
             }
-            std::printf("client_demo: %s.png (frame %llu, %s, %ux%u, shadow map %u)\n", prefix.c_str(),
-                        (unsigned long long)frame.frameId, source->transportName().c_str(), frame.width, frame.height,
-                        frame.shadowSize);
+            std::printf("client_demo: %s.png (frame %llu, %s, %ux%u, shadow map %u, composite %s, terrain %llu px)\n",
+                        prefix.c_str(), (unsigned long long)frame.frameId, source->transportName().c_str(), frame.width,
+                        frame.height, frame.shadowSize, compositeName(stats.mode),
+                        (unsigned long long)stats.terrainPixels);
             advanceAircraft(aircraft, scriptedInput(i), o.stepS);
         }
     }

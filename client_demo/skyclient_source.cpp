@@ -7,6 +7,8 @@
 #include "client_demo/vulkan_import.h"
 #endif
 
+#include <glm/gtc/packing.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -38,11 +40,42 @@ SkyClient* connectClient(const std::string& socketPath, std::string& error)
     return client;
 }
 
+// Copies one layer of `channels` values per pixel into out (half floats widened to float, float copied);
+// clears out when the frame does not carry the layer in the expected format.
+void copyLayer(const SkyFrameLayer& layer, uint32_t format, uint32_t width, uint32_t height, uint32_t channels,
+               std::vector<float>& out)
+{
+    const bool half = format != SKY_FORMAT_R32F_METRES;
+    const size_t valueBytes = half ? 2 : 4;
+    if (layer.format != format || layer.pixels == nullptr || layer.row_bytes < width * channels * valueBytes)
+    {
+        out.clear();
+        return;
+    }
+    out.resize(size_t(width) * height * channels);
+    for (uint32_t y = 0; y < height; ++y)
+    {
+        const uint8_t* row = layer.pixels + size_t(y) * layer.row_bytes;
+        float* dst = out.data() + size_t(y) * width * channels;
+        if (!half)
+        {
+            std::memcpy(dst, row, size_t(width) * channels * 4);
+            continue;
+        }
+        for (size_t k = 0; k < size_t(width) * channels; ++k)
+        {
+            uint16_t bits = 0;
+            std::memcpy(&bits, row + 2 * k, 2);
+            dst[k] = glm::unpackHalf1x16(bits);
+        }
+    }
+}
+
 }  // namespace
 
 std::unique_ptr<SkyClientSource> SkyClientSource::open(const std::string& socketPath, Transport transport,
                                                        VulkanDevice* vk, const DeviceRequest& request,
-                                                       std::string& error)
+                                                       bool wantLayers, std::string& error)
 {
     std::unique_ptr<SkyClientSource> source(new SkyClientSource());
     source->client_ = connectClient(socketPath, error);
@@ -50,7 +83,8 @@ std::unique_ptr<SkyClientSource> SkyClientSource::open(const std::string& socket
         return nullptr;
 
 #ifdef DEMO_HAVE_VULKAN_IMPORT
-    if (transport != Transport::Shm && vk != nullptr)
+    // Auto with layers wanted takes shared memory: the zero-copy transport exports the display image only.
+    if (vk != nullptr && (transport == Transport::Vulkan || (transport == Transport::Auto && !wantLayers)))
     {
         SkyExportedFrames exported{};
         std::string why;
@@ -96,7 +130,9 @@ std::unique_ptr<SkyClientSource> SkyClientSource::open(const std::string& socket
         return nullptr;
     }
 #endif
-    if (sky_client_subscribe_shm(source->client_) != SKY_OK)
+    const uint32_t compositing = (1u << SKY_LAYER_SKY) | (1u << SKY_LAYER_CLOUDS) | (1u << SKY_LAYER_DEPTH);
+    const uint32_t layers = (1u << SKY_LAYER_DISPLAY) | (wantLayers ? compositing : 0u);
+    if (sky_client_subscribe_shm_layers(source->client_, layers) != SKY_OK)
     {
         error = std::string("subscribing to the shared-memory ring: ") + sky_client_last_error(source->client_);
         return nullptr;
@@ -154,6 +190,10 @@ bool SkyClientSource::copyShm(const SkyFrame& frame, LatestFrame& out)
     out.shadowSize = frame.shadow_transmittance ? frame.shadow_size : 0;
     out.shadowTransmittance.assign(frame.shadow_transmittance,
                                    frame.shadow_transmittance + size_t(out.shadowSize) * out.shadowSize);
+    copyLayer(frame.layers[SKY_LAYER_SKY], SKY_FORMAT_RGBA16F_LINEAR, frame.width, frame.height, 4, out.skyRgba);
+    copyLayer(frame.layers[SKY_LAYER_CLOUDS], SKY_FORMAT_RGBA16F_PREMULTIPLIED, frame.width, frame.height, 4,
+              out.cloudsRgba);
+    copyLayer(frame.layers[SKY_LAYER_DEPTH], SKY_FORMAT_R32F_METRES, frame.width, frame.height, 1, out.depthM);
     return true;
 }
 
@@ -180,8 +220,14 @@ FetchStatus SkyClientSource::fetch(uint64_t afterFrameId, int timeoutMs, LatestF
         bool copied = false;
 #ifdef DEMO_HAVE_VULKAN_IMPORT
         if (import_)
+        {
+            // The exported images are the display frame and the shadow map: no layers on this transport.
+            out.skyRgba.clear();
+            out.cloudsRgba.clear();
+            out.depthM.clear();
             copied = import_->copySlot(frame.slot, frame.frame_id, frame.width, frame.height, frame.shadow_size, out,
                                        error_);
+        }
         else
 #endif
             copied = copyShm(frame, out);
@@ -197,6 +243,7 @@ FetchStatus SkyClientSource::fetch(uint64_t afterFrameId, int timeoutMs, LatestF
         }
         out.frameId = frame.frame_id;
         out.simTimeUnixS = frame.sim_time_unix_s;
+        out.exposure = frame.exposure;
         out.view = frame.view;
         out.shadow = frame.shadow;
         if (out.shadowSize == 0)

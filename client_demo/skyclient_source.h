@@ -37,11 +37,13 @@ public:
      *   device must not: open() creates the device, on the service's GPU when the zero-copy transport is
      *   taken (with the import extensions added to `request`), else as `request` says.
      * @param[in] request what else the device must do (present to a surface).
+     * @param[in] wantLayers shared memory: subscribe to the sky, clouds and depth layers as well (the zero-copy
+     *   transport exports the display image only; Transport::Auto then takes shared memory).
      * @param[out] error why it failed (connection refused, no device, import failed).
      * @return the source, or null.
      **********************************************************************/
     static std::unique_ptr<SkyClientSource> open(const std::string& socketPath, Transport transport, VulkanDevice* vk,
-                                                 const DeviceRequest& request, std::string& error);
+                                                 const DeviceRequest& request, bool wantLayers, std::string& error);
     ~SkyClientSource() override;
     SkyClientSource(const SkyClientSource&) = delete;
     SkyClientSource& operator=(const SkyClientSource&) = delete;

@@ -82,7 +82,8 @@ int runWindowed(const DemoOptions& o)
         return fail("cannot create a Vulkan surface for the window");
     DeviceRequest request;
     request.surface = s.surface;
-    s.source = SkyClientSource::open(o.socketPath, o.transport, &s.vk, request, error);
+    s.source = SkyClientSource::open(o.socketPath, o.transport, &s.vk, request,
+                                     o.composite == CompositeMode::Layers, error);
     if (!s.source)
         return fail(error);
     uint32_t fbWidth = 0;
@@ -99,8 +100,7 @@ int runWindowed(const DemoOptions& o)
         return fail(s.source->lastError());
 
     Aircraft aircraft = o.aircraft;
-    CompositeOptions composite;
-    composite.ground = o.ground;
+    CompositeOptions composite = compositeOptionsOf(o);
     LatestFrame frame;
     sky::ImageRgba8 composited;
     SkyShmView sentView{};
