@@ -9,6 +9,7 @@
 #include <cstring>
 #include <ctime>
 #include <fcntl.h>
+#include <algorithm>
 #include <signal.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
@@ -232,6 +233,9 @@ bool ShmRingWriter::create(const ShmRingConfig& config, std::string& error)
     header_ = static_cast<SkyShmHeader*>(p);
     slotsOffset_ = slotsOffset;
     slotStride_ = layout.stride;
+    // Up to 3 helpers (4 copying threads): the copy's speed stops growing there on the machines measured.
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    copier_ = std::make_unique<ParallelCopy>(std::min(3u, cores - 1));
     // ftruncate zero-filled the object: every slot's sequence is 0 (even, never written), no frame yet.
     SkyShmHeader& h = *header_;
     h.version = SKY_SHM_VERSION;
@@ -344,26 +348,28 @@ bool ShmRingWriter::endSlot(const ShmFrame& frame, std::string& error)
     uint8_t* base = reinterpret_cast<uint8_t*>(s);
     s->layers[SKY_LAYER_DISPLAY] = SkyShmLayer{frame.pixels ? frame.format : 0u, uint32_t(tightRow),
                                                layout.imageOffset, imageBytes};
+    copies_.clear();
     for (uint32_t k = 1; k < SKY_LAYER_COUNT; ++k)
     {
         const uint64_t row = uint64_t(frame.width) * bytesPerPixel(kLayerFormat[k]);
         const uint64_t bytes = frame.layers[k] ? row * frame.height : 0;  // <= capacity: the size was checked
         s->layers[k] = SkyShmLayer{bytes ? kLayerFormat[k] : 0u, uint32_t(row), layout.layerOffset[k], bytes};
         if (bytes)
-            std::memcpy(base + layout.layerOffset[k], frame.layers[k], bytes);
+            copies_.push_back(CopyJob{base + layout.layerOffset[k], frame.layers[k], size_t(bytes)});
     }
     if (frame.pixels)
     {
         const uint64_t sourceRow = frame.rowBytes != 0 ? frame.rowBytes : tightRow;
         const auto* src = static_cast<const uint8_t*>(frame.pixels);
         if (sourceRow == tightRow)
-            std::memcpy(base + layout.imageOffset, src, imageBytes);
+            copies_.push_back(CopyJob{base + layout.imageOffset, src, size_t(imageBytes)});
         else
             for (uint32_t y = 0; y < frame.height; ++y)
                 std::memcpy(base + layout.imageOffset + y * tightRow, src + y * sourceRow, tightRow);
     }
     if (shadowBytes)
-        std::memcpy(base + layout.shadowOffset, frame.shadowTransmittance, shadowBytes);
+        copies_.push_back(CopyJob{base + layout.shadowOffset, frame.shadowTransmittance, size_t(shadowBytes)});
+    copier_->run(copies_);
 
     __atomic_store_n(&s->sequence, (seq | 1u) + 1u, __ATOMIC_RELEASE);
     // Publish: the slot first, then the id readers poll (a reader checks the slot's own frame_id anyway).

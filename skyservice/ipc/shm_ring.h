@@ -3,11 +3,14 @@
 // service owns, and the reader that libskyclient and the tests use. No Vulkan, no renderer: CPU only.
 #pragma once
 
+#include "skyservice/ipc/parallel_copy.h"
 #include "skyservice/ipc/shm_layout.h"
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace sky
 {
@@ -76,6 +79,8 @@ private:
     // The writer's own copy of the geometry: what lies in the mapping may be scribbled by any process
     // that can open it, so the writer never reads an address back from it.
     uint64_t slotsOffset_ = 0, slotStride_ = 0;
+    std::unique_ptr<ParallelCopy> copier_;  ///< the frame's images into the slot, on a few threads
+    std::vector<CopyJob> copies_;
     SkyShmSlot* slot(uint32_t index) const
     {
         return reinterpret_cast<SkyShmSlot*>(reinterpret_cast<uint8_t*>(header_) + slotsOffset_ + index * slotStride_);
