@@ -12,6 +12,7 @@
 #endif
 
 #include <CLI/CLI.hpp>
+#include <vector>
 
 namespace
 {
@@ -34,7 +35,38 @@ CLI::App* addRenderCommand(CLI::App& app, RenderCommandOptions& render)
         ->check(CLI::Range(-360.0, 720.0));
     cmd->add_option("--pitch", v.pose.pitchDeg, "Pitch, + nose up (degrees)")->check(CLI::Range(-90.0, 90.0));
     cmd->add_option("--roll", v.pose.rollDeg, "Roll, + right wing down (degrees)")->check(CLI::Range(-180.0, 180.0));
-    cmd->add_option("--fov", v.fovYDeg, "Vertical field of view (degrees)")->check(CLI::Range(1.0, 170.0));
+    CLI::Option* fov =
+        cmd->add_option("--fov", v.fovYDeg, "Vertical field of view (degrees)")->check(CLI::Range(1.0, 170.0));
+    // An off-centre frustum (a display wall's channel): the four half-angles together, instead of --fov.
+    const struct
+    {
+        const char* name;
+        double* deg;
+        const char* help;
+    } halfAngles[] = {
+        {"--left", &v.frustum.leftDeg, "Off-centre frustum: angle from the view axis to the left edge (degrees)"},
+        {"--right", &v.frustum.rightDeg, "Off-centre frustum: angle from the view axis to the right edge (degrees)"},
+        {"--up", &v.frustum.upDeg, "Off-centre frustum: angle from the view axis to the upper edge (degrees)"},
+        {"--down", &v.frustum.downDeg, "Off-centre frustum: angle from the view axis to the lower edge (degrees)"},
+    };
+    std::vector<CLI::Option*> angles;
+    for (const auto& a : halfAngles)
+    {
+        double* deg = a.deg;
+        angles.push_back(cmd->add_option_function<double>(
+                                a.name,
+                                [&v, deg](const double& value) {
+                                    *deg = value;
+                                    v.frustum.asymmetric = true;
+                                },
+                                a.help)
+                             ->check(CLI::Range(-85.0, 85.0))
+                             ->excludes(fov));
+    }
+    for (CLI::Option* a : angles)
+        for (CLI::Option* b : angles)
+            if (a != b)
+                a->needs(b);
     cmd->add_option("--width", v.width, "Image width (pixels)")->check(CLI::Range(8, 8192));
     cmd->add_option("--height", v.height, "Image height (pixels)")->check(CLI::Range(8, 8192));
     cmd->add_option("--time", render.time, "UTC time, ISO 8601 (e.g. 2026-06-21T12:00:00Z)");

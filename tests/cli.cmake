@@ -32,6 +32,21 @@ set_tests_properties(cli.render.small_validated PROPERTIES TIMEOUT 300)
 add_test(NAME cli.render.small_files_exist COMMAND ${CMAKE_COMMAND} -E cat ${SKY_CLI_TMP}/small.json)
 set_tests_properties(cli.render.small_files_exist PROPERTIES DEPENDS cli.render.small_validated
                      PASS_REGULAR_EXPRESSION "\"sun\"")
+# An off-centre frustum: the four half-angles together, never with --fov, left + right over 1 degree.
+add_test(NAME cli.render.frustum_with_fov COMMAND ${SKY_EXPECT} 2 "excludes --(left|right|up|down|fov)"
+         ${SKY_BIN} render --left 40 --right 0 --up 20 --down 20 --fov 30)
+add_test(NAME cli.render.frustum_incomplete COMMAND ${SKY_EXPECT} 2 "--left requires --(right|up|down)"
+         ${SKY_BIN} render --left 40)
+add_test(NAME cli.render.frustum_too_narrow COMMAND ${SKY_EXPECT} 2 "left \\+ right" ${SKY_BIN} render
+         --left 40 --right -39.5 --up 20 --down 20)
+# A display wall's left channel renders, and its sidecar gives the four angles instead of fov.
+add_test(NAME cli.render.frustum_channel COMMAND ${SKY_EXPECT} 0 "wrote .*channel\\.png" ${SKY_BIN} render
+         --quality test --width 32 --height 18 --left 40 --right 0 --up 12 --down 12 --out ${SKY_CLI_TMP}/channel)
+set_tests_properties(cli.render.frustum_channel PROPERTIES TIMEOUT 300)
+add_test(NAME cli.render.frustum_sidecar COMMAND ${CMAKE_COMMAND} -E cat ${SKY_CLI_TMP}/channel.json)
+set_tests_properties(cli.render.frustum_sidecar PROPERTIES DEPENDS cli.render.frustum_channel
+                     PASS_REGULAR_EXPRESSION "\"left\": ?40\\.0.*\"right\": ?0\\.0"
+                     FAIL_REGULAR_EXPRESSION "\"fov\"")
 # A config file with an unknown key is refused and the key is named (exit 2).
 file(WRITE ${SKY_CLI_TMP}/bad-key.toml "[march]\nmax_view_step = 10\n")
 add_test(NAME cli.config.unknown_key COMMAND ${SKY_EXPECT} 2 "march.max_view_step" ${SKY_BIN} render

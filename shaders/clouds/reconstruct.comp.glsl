@@ -136,7 +136,8 @@ void loadFreshBox(ivec2 block, ivec2 phase, int B, INOUT(FreshBox) box)
 }
 
 // Projects `v` (from the previous eye, current ENU axes) into the previous image: pixel coordinates
-// in `q`, false when behind the previous camera or off its screen.
+// in `q`, false when behind the previous camera or off its screen. An off-centre frustum comes with
+// shifted right and up axes (frame_params.h) and takes the same formula.
 bool projectPrevious(vec3 v, out vec2 q)
 {
     q = vec2(-1.0f);

@@ -15,7 +15,9 @@ uvec2 permutedId(uvec2 globalId, uint rows)
 
 uvec2 permutedPixel(uvec2 globalId) { return permutedId(globalId, frame.image.y); }
 
-// Unit view direction (ENU) through the centre of `pixelCentre` (pixels, y down).
+// Unit view direction (ENU) through the centre of `pixelCentre` (pixels, y down). An off-centre frustum
+// (a display wall's channel) needs nothing more: cameraForward is the ray through the image centre,
+// shifted from the view axis on the CPU (frame_params.h).
 vec3 viewRayDirection(vec2 pixelCentre)
 {
     vec2 ndc = (pixelCentre + frame.exposure.zw) / vec2(frame.image.xy) * 2.0f - 1.0f;

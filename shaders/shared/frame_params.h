@@ -13,9 +13,15 @@
 
 struct FrameParams
 {
-    vec4 cameraRight;    // xyz: unit right axis (ENU); w: tan(fovY/2) * width/height
-    vec4 cameraUp;       // xyz: unit up axis (ENU); w: tan(fovY/2)
-    vec4 cameraForward;  // xyz: unit view axis (ENU); w: eye altitude above the ellipsoid (m)
+    // The camera (skyservice/render/view_frustum.h ViewTangents): the ray of normalised device
+    // coordinates ndc (y down) is cameraForward.xyz + ndc.x * cameraRight.w * cameraRight.xyz
+    // - ndc.y * cameraUp.w * cameraUp.xyz.
+    vec4 cameraRight;    // xyz: unit right axis (ENU); w: half the image width, tangent units (tan(fovY/2) * aspect)
+    vec4 cameraUp;       // xyz: unit up axis (ENU); w: half the image height in tangent units (tan(fovY/2))
+    // xyz: the ray through the image centre: the unit view axis (ENU), plus, for an off-centre frustum,
+    // the centre's tangent offsets along the right and up axes (then not unit); w: eye altitude above
+    // the ellipsoid (m)
+    vec4 cameraForward;
     vec4 earth;          // x: local earth radius R (m); y: R + eye altitude (m); z: window warp radius r0 (m, window_warp.glsl); w: window half extent (m)
     vec4 shell;          // x: lowest cloud base in the window (m); y: highest volumetric top (m); z: max march distance (m); w: high-cloud altitude (m)
     vec4 sunDirection;   // xyz: unit direction to the sun (ENU); w: sun angular radius (rad)
@@ -43,9 +49,13 @@ struct FrameParams
     // reprojection x: block size (1: full resolution, 4: one pixel of each 4x4 block marched);
     // yz: marched position in the block; w: 1 when the history images hold the previous frame
     uvec4 reprojection;
-    vec4 previousRight;     // xyz: previous camera right axis; w: its tan(fovY/2) * width/height
-    vec4 previousUp;        // xyz: previous camera up axis; w: its tan(fovY/2)
-    vec4 previousForward;   // xyz: previous camera view axis; w: unused
+    // The previous camera projects a direction v to ndc = (dot(v, previousRight.xyz) / (z * previousRight.w),
+    // -dot(v, previousUp.xyz) / (z * previousUp.w)), z = dot(v, previousForward.xyz). For an off-centre
+    // frustum the right and up axes are shifted to measure from the image centre: right - centreX * forward
+    // (then not unit; skyservice/render/reprojection.cpp).
+    vec4 previousRight;     // xyz: previous camera right axis; w: its half image width in tangent units
+    vec4 previousUp;        // xyz: previous camera up axis; w: its half image height in tangent units
+    vec4 previousForward;   // xyz: previous camera unit view axis; w: unused
     vec4 previousEye;       // xyz: previous eye position relative to the current eye (m); w: unused
     // The weather window is centred on a lattice node near the eye, not on the eye
     // (skyservice/earth/window_lattice.h): window-plane position = windowOffsetM.xy + the map position
@@ -53,7 +63,8 @@ struct FrameParams
     vec4 windowOffsetM;     // xy: the eye's position on the window plane (m); zw: unused
     vec4 windowAxes;        // xy: window-plane image of 1 m east of the eye; zw: of 1 m north
     // World-space march jitter (shaders/lib/world_jitter.glsl). x: angle of one jitter texel (rad), one
-    // pixel at the image centre, so two channels of the same size and field of view share the texels.
+    // pixel's height at the view axis, so two channels of the same height and vertical extent share the
+    // texels.
     vec4 worldJitter;
     // Level of detail of the march with distance (QualitySettings). x, y: the detail erosion fades out
     // between these distances (m); z: beyond this distance (m) the light cone takes 3 cheap samples (0:

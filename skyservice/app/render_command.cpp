@@ -5,6 +5,7 @@
 #include "skyservice/app/render_files.h"
 #include "skyservice/app/weather_source.h"
 #include "skyservice/render/renderer.h"
+#include "skyservice/render/view_frustum.h"
 #include "skyservice/sky/ephemeris.h"
 
 #include <CLI/CLI.hpp>
@@ -91,7 +92,7 @@ int runRenderCommand(const RenderCommandOptions& options)
         std::fprintf(stderr, "skyservice render: --time %s: %s\n", options.time.c_str(), error.c_str());
         return kExitUsage;
     }
-    if (!validateEyePose(request.pose, error))
+    if (!validateEyePose(request.pose, error) || !validateFrustum(request.frustum, error))
     {
         std::fprintf(stderr, "skyservice render: %s\n", error.c_str());
         return kExitUsage;

@@ -101,11 +101,24 @@ bool writeRenderFiles(const std::string& prefix, const ViewRequest& request, con
     j["view"] = {{"lat", request.pose.latDeg},         {"lon", request.pose.lonDeg},
                  {"alt", request.pose.altitudeM},      {"heading", request.pose.headingDeg},
                  {"pitch", request.pose.pitchDeg},     {"roll", request.pose.rollDeg},
-                 {"fov", request.fovYDeg},             {"width", request.width},
-                 {"height", request.height},           {"time", facts.timeIso}};
+                 {"width", request.width},             {"height", request.height},
+                 {"time", facts.timeIso}};
     j["units"] = {{"lat", "degrees"}, {"lon", "degrees"}, {"alt", "metres above the WGS84 ellipsoid"},
                   {"heading", "degrees clockwise from north"}, {"pitch", "degrees, + nose up"},
-                  {"roll", "degrees, + right wing down"}, {"fov", "vertical, degrees"}};
+                  {"roll", "degrees, + right wing down"}};
+    // The frustum as the socket API and the CLI take it: fov, or the four half-angles of an off-centre one.
+    if (request.frustum.asymmetric)
+    {
+        const Frustum& f = request.frustum;
+        j["view"].update({{"left", f.leftDeg}, {"right", f.rightDeg}, {"up", f.upDeg}, {"down", f.downDeg}});
+        j["units"]["left"] = j["units"]["right"] = j["units"]["up"] = j["units"]["down"] =
+            "degrees from the view axis to that image edge, + outwards";
+    }
+    else
+    {
+        j["view"]["fov"] = request.fovYDeg;
+        j["units"]["fov"] = "vertical, degrees";
+    }
     j["weather"] = facts.weatherSource;
     j["weatherValidTime"] = formatIso8601Utc(result.weatherValidTimeUnixS);  // of the snapshot drawn
     if (facts.weatherVersion != 0)

@@ -327,14 +327,27 @@ SkyResult sky_client_set_view(SkyClient* client, const SkyView* view)
         return SKY_ERR_ARGUMENT;
     if (!view)
         return fail(client, SKY_ERR_ARGUMENT, "view is null");
-    const double values[] = {view->lat_deg,   view->lon_deg,  view->alt_m,  view->heading_deg,
-                             view->pitch_deg, view->roll_deg, view->fov_deg};
+    if (view->asymmetric > 1)
+        return fail(client, SKY_ERR_ARGUMENT, "view.asymmetric must be 0 or 1 (zero the view before filling it)");
+    const bool asymmetric = view->asymmetric == 1;
+    const double values[] = {view->lat_deg,   view->lon_deg,  view->alt_m,    view->heading_deg, view->pitch_deg,
+                             view->roll_deg,  asymmetric ? 0.0 : view->fov_deg, view->left_deg,  view->right_deg,
+                             view->up_deg,    view->down_deg};
     for (double v : values)
         if (!std::isfinite(v))
             return fail(client, SKY_ERR_ARGUMENT, "view has a value that is not finite");
-    json v = {{"lat", view->lat_deg},     {"lon", view->lon_deg},     {"alt", view->alt_m},
+    json v = {{"lat", view->lat_deg},         {"lon", view->lon_deg},     {"alt", view->alt_m},
               {"heading", view->heading_deg}, {"pitch", view->pitch_deg}, {"roll", view->roll_deg},
-              {"fov", view->fov_deg},     {"width", view->width},     {"height", view->height}};
+              {"width", view->width},         {"height", view->height}};
+    if (asymmetric)
+    {
+        v["left"] = view->left_deg;
+        v["right"] = view->right_deg;
+        v["up"] = view->up_deg;
+        v["down"] = view->down_deg;
+    }
+    else
+        v["fov"] = view->fov_deg;
     json reply;
     SkyResult r = request(client, {{"type", "set_view"}, {"view", v}}, reply);
     return r == SKY_OK ? expectType(client, reply, "ok") : r;

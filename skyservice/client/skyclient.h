@@ -51,7 +51,9 @@ typedef enum SkyResult
 
 typedef struct SkyClient SkyClient;
 
-/* The view to render. Same names and units as the socket API's "view" object. */
+/* The view to render. Same names and units as the socket API's "view" object. Zero it before filling
+ * it; for a display wall's off-centre channel set asymmetric = 1 and left/right/up/down_deg instead of
+ * fov_deg (shm_layout.h SkyShmView). */
 typedef SkyShmView SkyView;
 
 /* One compositing layer of a frame (SKY_LAYER_*, shm_layout.h says what each holds). */
@@ -89,6 +91,7 @@ void sky_client_close(SkyClient* client);
  * this thread's last sky_client_connect failed. */
 const char* sky_client_last_error(const SkyClient* client);
 
+/* Sends the whole view (set_view): pose, size, and fov_deg or, with asymmetric = 1, the four half-angles. */
 SkyResult sky_client_set_view(SkyClient* client, const SkyView* view);
 /* Sets the simulated UTC time (s since 1970) and how fast it runs (sim seconds per real second; 0 =
  * frozen, 1 = real time). */

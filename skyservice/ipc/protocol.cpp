@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 namespace sky
@@ -136,6 +137,9 @@ bool parseView(const json& v, const ProtocolLimits& limits, ViewUpdate& out, Che
         {"lat", -90, 90, &out.lat},       {"lon", -540, 540, &out.lon},         {"alt", -500, 100000, &out.alt},
         {"heading", -360, 720, &out.heading}, {"pitch", -90, 90, &out.pitch}, {"roll", -180, 180, &out.roll},
         {"fov", 1, 170, &out.fov},
+        // An asymmetric frustum; the service also checks left + right and up + down (view_frustum.h).
+        {"left", -85, 85, &out.left}, {"right", -85, 85, &out.right}, {"up", -85, 85, &out.up},
+        {"down", -85, 85, &out.down},
     };
     bool any = false;
     for (const Angle& f : fields)
@@ -166,7 +170,20 @@ bool parseView(const json& v, const ProtocolLimits& limits, ViewUpdate& out, Che
     }
     if (!any)
         return check.fail("missing_field", "view",
-                          "view has none of lat, lon, alt, heading, pitch, roll, fov, width, height");
+                          "view has none of lat, lon, alt, heading, pitch, roll, fov, left, right, up, down, width, "
+                          "height");
+    const bool anyAngle = out.left || out.right || out.up || out.down;
+    if (anyAngle && out.fov)
+        return check.fail("out_of_range", "view.fov",
+                          "view.fov given with left/right/up/down: a frustum is either symmetric (fov) or "
+                          "asymmetric (the four half-angles)");
+    if (anyAngle)
+        for (const auto& [name, angle] : {std::pair{"left", &out.left}, std::pair{"right", &out.right},
+                                          std::pair{"up", &out.up}, std::pair{"down", &out.down}})
+            if (!*angle)
+                return check.fail("missing_field", std::string("view.") + name,
+                                  std::string("missing field \"view.") + name +
+                                      "\": an asymmetric frustum's left, right, up and down come together");
     return true;
 }
 

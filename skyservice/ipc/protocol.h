@@ -29,10 +29,12 @@ enum class RequestType
     WriteFiles,
 };
 
-/// A view change: only the fields the client sent are set (DESIGN §5 names).
+/// A view change: only the fields the client sent are set (DESIGN §5 names). An asymmetric frustum's
+/// half-angles (left, right, up, down) come all four together and never with fov.
 struct ViewUpdate
 {
     std::optional<double> lat, lon, alt, heading, pitch, roll, fov;
+    std::optional<double> left, right, up, down;
     std::optional<uint32_t> width, height;
 };
 

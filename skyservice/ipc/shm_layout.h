@@ -57,7 +57,12 @@ extern "C" {
 #define SKY_LAYER_DEPTH 3u
 #define SKY_LAYER_COUNT 4u
 
-/* The view a frame was rendered for. Names and units as in DESIGN §5 (CLI, socket API, sidecar JSON). */
+/* The view a frame was rendered for. Names and units as in DESIGN §5 (CLI, socket API, sidecar JSON).
+ * The frustum is either symmetric (asymmetric = 0: fov_deg vertical, the horizontal from the image's
+ * aspect) or off-centre, as the channels of a display wall (asymmetric = 1: the angles from the view
+ * axis to the left, right, upper and lower image edges, each in (-85, 85) degrees, positive outwards,
+ * left + right and up + down > 1; a frame then reports fov_deg = up_deg + down_deg). Zero the whole
+ * struct before filling it: a symmetric view leaves the last five fields 0. */
 typedef struct SkyShmView
 {
     double lat_deg;      /* geodetic latitude of the eye (degrees) */
@@ -69,6 +74,12 @@ typedef struct SkyShmView
     double fov_deg;      /* vertical field of view (degrees) */
     uint32_t width;      /* pixels */
     uint32_t height;     /* pixels */
+    double left_deg;     /* asymmetric frustum: half-angles from the view axis (degrees) */
+    double right_deg;
+    double up_deg;
+    double down_deg;
+    uint32_t asymmetric; /* 1: left/right/up/down give the frustum and fov_deg is ignored; 0: fov_deg */
+    uint32_t reserved;   /* 0 */
 } SkyShmView;
 
 /* Where the shadow map's texels lie on the earth (skyservice/render/shadow_map.h): the azimuthal

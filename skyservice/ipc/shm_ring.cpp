@@ -20,8 +20,10 @@ namespace sky
 
 // The layout is shared with C readers and other compilers: no implicit padding anywhere, 8-byte
 // alignment of every 64-bit field, fixed sizes. A change here is a SKY_SHM_VERSION change.
-static_assert(sizeof(SkyShmView) == 7 * 8 + 2 * 4);
+static_assert(sizeof(SkyShmView) == 7 * 8 + 2 * 4 + 4 * 8 + 2 * 4);
 static_assert(offsetof(SkyShmView, width) == 56 && offsetof(SkyShmView, height) == 60);
+static_assert(offsetof(SkyShmView, left_deg) == 64 && offsetof(SkyShmView, down_deg) == 88);
+static_assert(offsetof(SkyShmView, asymmetric) == 96 && offsetof(SkyShmView, reserved) == 100);
 static_assert(sizeof(SkyShmShadowGeoRef) == 3 * 8 + 8 * 8 + 2 * 8 + 2 * 4);
 static_assert(offsetof(SkyShmShadowGeoRef, size_texels) == 104);
 static_assert(sizeof(SkyShmHeader) == 8 + 4 * 4 + 3 * 8 + 4 * 4 + 3 * 8 + 8 * 8);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/frame_setup.h"
 
+#include "skyservice/render/view_frustum.h"
 #include "skyservice/sky/atmosphere.h"
 
 #include <algorithm>
@@ -56,11 +57,15 @@ FrameParams makeFrameParams(const FrameInputs& in)
 
     FrameParams f;
     std::memset(&f, 0, sizeof f);
-    double tanHalf = std::tan(req.fovYDeg * M_PI / 360.0);
-    double aspect = double(req.width) / double(req.height);
-    f.cameraRight = v4(cam.rightEnu, tanHalf * aspect);
-    f.cameraUp = v4(cam.upEnu, tanHalf);
-    f.cameraForward = v4(cam.forwardEnu, cam.eye.altitudeM);
+    const ViewTangents tangents = viewTangents(req);
+    f.cameraRight = v4(cam.rightEnu, tangents.halfWidth);
+    f.cameraUp = v4(cam.upEnu, tangents.halfHeight);
+    // The ray through the image centre (frame_params.h): an off-centre frustum shifts it from the view
+    // axis. A centred one keeps the axis itself, untouched by any arithmetic (the same bytes as always).
+    glm::dvec3 centreRay = cam.forwardEnu;
+    if (tangents.centreX != 0.0 || tangents.centreY != 0.0)
+        centreRay += tangents.centreX * cam.rightEnu + tangents.centreY * cam.upEnu;
+    f.cameraForward = v4(centreRay, cam.eye.altitudeM);
     double R = cam.localEarthRadiusM;
     f.earth = vec4(float(R), float(R + cam.eye.altitudeM), float(in.window->warpRadiusM), float(in.window->halfExtentM));
     const EyeOnWindow& e = in.eyeOnWindow;
@@ -142,7 +147,9 @@ FrameParams makeFrameParams(const FrameInputs& in)
                       float(std::max(q.lightLodDistanceM, 0.0)), float(q.fullConeSamples));
     f.detailLod = vec4(float(q.detailMinTransmittance), float(std::max(q.deepStepFactor, 1.0)),
                        float(std::max(q.maxStepOpticalDepth, 0.0)), float(std::max(q.deepLightReuseM, 0.0)));
-    f.worldJitter = vec4(float(2.0 * std::tan(req.fovYDeg * M_PI / 360.0) / double(req.height)), 0.0f, 0.0f, 0.0f);
+    // One jitter texel: a pixel's height at the view axis (2 tan(fovY/2) / height when centred), so that
+    // channels of one wall with the same vertical extent and height share the texels.
+    f.worldJitter = vec4(float(2.0 * tangents.halfHeight / double(req.height)), 0.0f, 0.0f, 0.0f);
     f.reprojection = uvec4(1u, 0u, 0u, 0u);  // full resolution unless the renderer's reprojected path says otherwise
     return f;
 }

@@ -10,6 +10,7 @@
 #include "skyservice/render/frame_setup.h"
 #include "skyservice/render/light_volume.h"
 #include "skyservice/render/shadow_map.h"
+#include "skyservice/render/view_frustum.h"
 #include "skyservice/render/window_upload.h"
 
 #include <algorithm>
@@ -32,7 +33,12 @@ SkyStatus checkRequest(const ViewRequest& req)
         return SkyStatus::failure("image size " + std::to_string(req.width) + "x" + std::to_string(req.height) +
                                       " outside 8..8192",
                                   VK_ERROR_INITIALIZATION_FAILED);
-    if (!(req.fovYDeg > 1.0 && req.fovYDeg < 170.0))
+    if (req.frustum.asymmetric)
+    {
+        if (!validateFrustum(req.frustum, error))
+            return SkyStatus::failure(error, VK_ERROR_INITIALIZATION_FAILED);
+    }
+    else if (!(req.fovYDeg > 1.0 && req.fovYDeg < 170.0))
         return SkyStatus::failure("vertical field of view " + std::to_string(req.fovYDeg) + " outside (1, 170) degrees",
                                   VK_ERROR_INITIALIZATION_FAILED);
     return SkyStatus::success();

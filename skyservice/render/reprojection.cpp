@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/reprojection.h"
 
+#include "skyservice/render/view_frustum.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -100,7 +102,7 @@ bool historyUsable(const ReprojectionHistory& history, const ViewRequest& view, 
     const ViewRequest& last = history.lastView;
     if (!history.valid)
         why = "no history";
-    else if (last.width != view.width || last.height != view.height || last.fovYDeg != view.fovYDeg)
+    else if (!sameProjection(last, view))
         why = "image size or field of view changed";
     else if (glm::length(camera.eyeEcefM - history.lastCamera.eyeEcefM) > kReprojectionMaxMoveM)
         why = "eye moved more than the limit";
@@ -131,10 +133,19 @@ void fillReprojectionParams(FrameParams& frame, const ReprojectionHistory& histo
     const CameraFrame& prev = history.lastCamera;
     glm::dmat3 ecefToEnu = glm::transpose(camera.enuToEcef);
     glm::dmat3 prevToNow = ecefToEnu * prev.enuToEcef;
-    double tanHalf = std::tan(history.lastView.fovYDeg * M_PI / 360.0);
-    double aspect = double(view.width) / double(view.height);
-    frame.previousRight = v4(prevToNow * prev.rightEnu, tanHalf * aspect);
-    frame.previousUp = v4(prevToNow * prev.upEnu, tanHalf);
+    // History is kept only for the same projection (historyUsable), so the previous frustum is this one.
+    const ViewTangents t = viewTangents(view);
+    // An off-centre frustum: the tangent x of a direction is measured from the image centre, x - centreX
+    // = dot(v, right - centreX * forward) / dot(v, forward), so the shifted axes project with the
+    // centred formula (reconstruct.comp.glsl projectPrevious). A centred one keeps the axes untouched.
+    glm::dvec3 right = prev.rightEnu, up = prev.upEnu;
+    if (t.centreX != 0.0 || t.centreY != 0.0)
+    {
+        right -= t.centreX * prev.forwardEnu;
+        up -= t.centreY * prev.forwardEnu;
+    }
+    frame.previousRight = v4(prevToNow * right, t.halfWidth);
+    frame.previousUp = v4(prevToNow * up, t.halfHeight);
     frame.previousForward = v4(prevToNow * prev.forwardEnu, 0.0);
     frame.previousEye = v4(ecefToEnu * (prev.eyeEcefM - camera.eyeEcefM), 0.0);
 }

@@ -2,6 +2,7 @@
 #include "skyservice/service/control_loop.h"
 
 #include "skyservice/earth/geodesy.h"
+#include "skyservice/render/view_frustum.h"
 #include "skyservice/service/log.h"
 #include "skyservice/sky/ephemeris.h"
 
@@ -15,11 +16,22 @@ namespace sky
 namespace
 {
 
+/// The view as set_view takes it: fov, or the four half-angles of an asymmetric frustum.
 nlohmann::json viewJson(const ViewRequest& v)
 {
-    return {{"lat", v.pose.latDeg},       {"lon", v.pose.lonDeg},     {"alt", v.pose.altitudeM},
-            {"heading", v.pose.headingDeg}, {"pitch", v.pose.pitchDeg}, {"roll", v.pose.rollDeg},
-            {"fov", v.fovYDeg},           {"width", v.width},         {"height", v.height}};
+    nlohmann::json j = {{"lat", v.pose.latDeg},         {"lon", v.pose.lonDeg},     {"alt", v.pose.altitudeM},
+                        {"heading", v.pose.headingDeg}, {"pitch", v.pose.pitchDeg}, {"roll", v.pose.rollDeg},
+                        {"width", v.width},             {"height", v.height}};
+    if (v.frustum.asymmetric)
+    {
+        j["left"] = v.frustum.leftDeg;
+        j["right"] = v.frustum.rightDeg;
+        j["up"] = v.frustum.upDeg;
+        j["down"] = v.frustum.downDeg;
+    }
+    else
+        j["fov"] = v.fovYDeg;
+    return j;
 }
 
 /// Value at quantile q of `values` (nearest rank), 0 for none.
@@ -178,12 +190,23 @@ void ControlLoop::setView(ClientId client, const Request& request)
     if (u.heading) v.pose.headingDeg = *u.heading;
     if (u.pitch) v.pose.pitchDeg = *u.pitch;
     if (u.roll) v.pose.rollDeg = *u.roll;
-    if (u.fov) v.fovYDeg = *u.fov;
+    if (u.fov)
+    {
+        v.fovYDeg = *u.fov;
+        v.frustum.asymmetric = false;
+    }
+    if (u.left)  // parseRequest: the four half-angles come together
+        v.frustum = Frustum{true, *u.left, *u.right, *u.up, *u.down};
     if (u.width) v.width = *u.width;
     if (u.height) v.height = *u.height;
     std::string why;
     // parseRequest checked each field's range; this is the renderer's own check of the whole pose.
     if (!validateEyePose(v.pose, why))
+    {
+        sendError(client, request.id, "out_of_range", why, "view");
+        return;
+    }
+    if (!validateFrustum(v.frustum, why))
     {
         sendError(client, request.id, "out_of_range", why, "view");
         return;

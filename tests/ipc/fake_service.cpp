@@ -50,6 +50,12 @@ std::string FakeService::lastTime() const
     return lastTime_;
 }
 
+ViewUpdate FakeService::lastView() const
+{
+    std::lock_guard<std::mutex> lock(mutex_);
+    return lastView_;
+}
+
 void FakeService::publish(uint64_t frameId, uint32_t width, uint32_t height)
 {
     std::vector<uint8_t> pixels(size_t(width) * height * 4, uint8_t(frameId & 0xff));
@@ -139,7 +145,13 @@ void FakeService::onLine(ClientId client, std::string_view line)
         }
         server_.send(client, okReply(r));
         return;
-    case RequestType::SetView: server_.send(client, okReply(r)); return;
+    case RequestType::SetView:
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        lastView_ = r.view;
+    }
+        server_.send(client, okReply(r));
+        return;
     }
 }
 

@@ -33,6 +33,8 @@ public:
     std::atomic<int> requests{0};
     /// The last set_time "time" string the fake received.
     std::string lastTime() const;
+    /// The last set_view "view" the fake received.
+    ViewUpdate lastView() const;
 
 private:
     void onLine(ClientId client, std::string_view line);
@@ -44,6 +46,7 @@ private:
     std::vector<ClientId> helloDone_;
     mutable std::mutex mutex_;
     std::string lastTime_;
+    ViewUpdate lastView_;
 };
 
 }  // namespace sky::test

@@ -17,6 +17,8 @@ size_t skyTestCLayout(int what)
     case 4: return offsetof(SkyShmHeader, latest_frame_id);
     case 5: return offsetof(SkyShmSlot, shadow);
     case 6: return offsetof(SkyShmSlot, image_offset);
+    case 7: return offsetof(SkyShmView, left_deg);
+    case 8: return offsetof(SkyShmView, asymmetric);
     default: return 0;
     }
 }

@@ -81,6 +81,45 @@ TEST_F(ClientTest, HelloThenRequests)
     EXPECT_EQ(sky_client_set_view(client, &v), SKY_ERR_ARGUMENT) << "a NaN is refused before it is sent";
 }
 
+// A display wall's channel: the four half-angles go instead of fov; a flag neither 0 nor 1 (a view not
+// zeroed) is refused before anything is sent.
+TEST_F(ClientTest, AsymmetricViewSendsTheHalfAngles)
+{
+    SkyView v = testView();
+    v.asymmetric = 1;
+    v.left_deg = 40;
+    v.right_deg = 0;
+    v.up_deg = 20;
+    v.down_deg = 15;
+    ASSERT_EQ(sky_client_set_view(client, &v), SKY_OK) << sky_client_last_error(client);
+    ViewUpdate sent = service->lastView();
+    ASSERT_TRUE(sent.left && sent.right && sent.up && sent.down);
+    EXPECT_EQ(*sent.left, 40.0);
+    EXPECT_EQ(*sent.right, 0.0);
+    EXPECT_EQ(*sent.up, 20.0);
+    EXPECT_EQ(*sent.down, 15.0);
+    EXPECT_FALSE(sent.fov.has_value());
+    EXPECT_EQ(*sent.width, 64u);
+
+    v.asymmetric = 0;
+    ASSERT_EQ(sky_client_set_view(client, &v), SKY_OK) << sky_client_last_error(client);
+    sent = service->lastView();
+    EXPECT_EQ(*sent.fov, 60.0);
+    EXPECT_FALSE(sent.left.has_value());
+
+    const int before = service->requests.load();
+    v.asymmetric = 7;
+    EXPECT_EQ(sky_client_set_view(client, &v), SKY_ERR_ARGUMENT);
+    EXPECT_NE(std::string(sky_client_last_error(client)).find("asymmetric"), std::string::npos);
+    v.asymmetric = 1;
+    v.up_deg = std::nan("");
+    EXPECT_EQ(sky_client_set_view(client, &v), SKY_ERR_ARGUMENT);
+    EXPECT_EQ(service->requests.load(), before);
+    v.up_deg = 90;  // the service's range check answers
+    EXPECT_EQ(sky_client_set_view(client, &v), SKY_ERR_REFUSED);
+    EXPECT_NE(std::string(sky_client_last_error(client)).find("view.up"), std::string::npos);
+}
+
 TEST_F(ClientTest, ErrorRepliesAreRefusedWithTheServiceMessage)
 {
     SkyView v = testView();

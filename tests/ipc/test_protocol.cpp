@@ -145,6 +145,37 @@ TEST(Protocol, OutOfRangeIncludingNonFinite)
         expectError(c);
 }
 
+// A display wall's channel: the four half-angles instead of fov (PROTOCOL.md "Asymmetric frusta").
+TEST(Protocol, AsymmetricFrustumHalfAngles)
+{
+    Request r;
+    ProtocolError e;
+    ASSERT_TRUE(parseRequest(R"({"type":"set_view","view":{"left":40,"right":-5.5,"up":20,"down":12,"width":64}})",
+                             limits(), r, e))
+        << e.message;
+    EXPECT_EQ(*r.view.left, 40.0);
+    EXPECT_EQ(*r.view.right, -5.5);
+    EXPECT_EQ(*r.view.up, 20.0);
+    EXPECT_EQ(*r.view.down, 12.0);
+    EXPECT_FALSE(r.view.fov.has_value());
+    EXPECT_EQ(*r.view.width, 64u);
+    // Angles alone are a view change.
+    ASSERT_TRUE(parseRequest(R"({"type":"set_view","view":{"left":0,"right":40,"up":20,"down":20}})", limits(), r, e))
+        << e.message;
+    // All four together, never with fov, each in [-85, 85] (the service checks the open bounds and the
+    // sums: view_frustum.h validateFrustum).
+    const Case cases[] = {
+        {R"({"type":"set_view","view":{"left":40,"right":0,"up":20}})", "missing_field", "view.down"},
+        {R"({"type":"set_view","view":{"right":40,"up":20,"down":20}})", "missing_field", "view.left"},
+        {R"({"type":"set_view","view":{"fov":60,"left":40,"right":0,"up":20,"down":20}})", "out_of_range", "view.fov"},
+        {R"({"type":"set_view","view":{"left":85.5,"right":0,"up":20,"down":20}})", "out_of_range", "view.left"},
+        {R"({"type":"set_view","view":{"left":0,"right":40,"up":20,"down":-86}})", "out_of_range", "view.down"},
+        {R"({"type":"set_view","view":{"left":0,"right":40,"up":"20","down":20}})", "bad_type", "view.up"},
+    };
+    for (const Case& c : cases)
+        expectError(c);
+}
+
 TEST(Protocol, ErrorsKeepTheIdAndChangeNothing)
 {
     Request r;

@@ -68,6 +68,8 @@ TEST(ShmRing, LayoutHasNoPaddingAndMatchesC)
     EXPECT_EQ(skyTestCLayout(4), offsetof(SkyShmHeader, latest_frame_id));
     EXPECT_EQ(skyTestCLayout(5), offsetof(SkyShmSlot, shadow));
     EXPECT_EQ(skyTestCLayout(6), offsetof(SkyShmSlot, image_offset));
+    EXPECT_EQ(skyTestCLayout(7), offsetof(SkyShmView, left_deg));
+    EXPECT_EQ(skyTestCLayout(8), offsetof(SkyShmView, asymmetric));
     EXPECT_EQ(sizeof(SkyShmHeader), 152u);
     EXPECT_EQ(offsetof(SkyShmSlot, sequence), 0u);
 

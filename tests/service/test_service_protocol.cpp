@@ -68,6 +68,14 @@ TEST(ServiceProtocol, MalformedMessagesChangeNothing)
         {"{\"type\":\"set_view\",\"view\":{\"width\":129}}", "out_of_range", "view.width"},
         {"{\"type\":\"set_view\",\"view\":{\"fov\":0}}", "out_of_range", "view.fov"},
         {"{\"type\":\"set_view\",\"view\":{\"width\":64.5}}", "bad_type", "view.width"},
+        // Asymmetric frusta: the parser's checks, then the service's own (open bounds, left + right).
+        {"{\"type\":\"set_view\",\"view\":{\"left\":40,\"right\":0,\"up\":20}}", "missing_field", "view.down"},
+        {"{\"type\":\"set_view\",\"view\":{\"fov\":50,\"left\":40,\"right\":0,\"up\":20,\"down\":20}}",
+         "out_of_range", "view.fov"},
+        {"{\"type\":\"set_view\",\"view\":{\"left\":85,\"right\":0,\"up\":20,\"down\":20}}", "out_of_range",
+         "view"},
+        {"{\"type\":\"set_view\",\"view\":{\"lat\":10,\"left\":40,\"right\":-39.5,\"up\":20,\"down\":20}}",
+         "out_of_range", "view"},
         {"{\"type\":\"set_time\",\"time\":\"2026-13-45T00:00:00Z\"}", "out_of_range", "time"},
         {"{\"type\":\"set_time\",\"time\":\"yesterday\"}", "out_of_range", "time"},
         {"{\"type\":\"set_time\",\"time\":12}", "bad_type", "time"},
@@ -107,6 +115,19 @@ TEST(ServiceProtocol, MalformedMessagesChangeNothing)
     json after = c.request({{"type", "status"}});
     ASSERT_EQ(after.value("type", ""), "status") << after;
     EXPECT_EQ(stableState(before), stableState(after));
+
+    // A display wall's channel: status gives the view as set_view took it, and fov makes it symmetric again.
+    json ok = c.request({{"type", "set_view"}, {"view", {{"left", 40}, {"right", 0}, {"up", 20}, {"down", 15}}}});
+    EXPECT_EQ(ok.value("type", ""), "ok") << ok;
+    json view = c.request({{"type", "status"}})["view"];
+    EXPECT_EQ(view.value("left", 0.0), 40.0) << view;
+    EXPECT_EQ(view.value("down", 0.0), 15.0) << view;
+    EXPECT_FALSE(view.contains("fov")) << view;
+    ok = c.request({{"type", "set_view"}, {"view", {{"fov", 50}}}});
+    EXPECT_EQ(ok.value("type", ""), "ok") << ok;
+    view = c.request({{"type", "status"}})["view"];
+    EXPECT_EQ(view.value("fov", 0.0), 50.0) << view;
+    EXPECT_FALSE(view.contains("left")) << view;
 
     // Eight too-long lines in a row close the connection; others are unaffected.
     RawClient other;
