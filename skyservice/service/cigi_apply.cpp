@@ -62,9 +62,10 @@ std::shared_ptr<const WeatherTimeline> CigiApplier::weatherIfChanged(const cigi:
     weatherGrid_ = grid;
     weatherBuilt_ = true;
     ++weatherBuilds_;
-    SKY_LOG_INFO("cigi: weather from the host: %zu cloud layer(s)%s on a %ux%u grid",
-                 timeline->snapshot(0).layers.size(),
-                 timeline->snapshot(0).high.coverage.empty() ? "" : " + high cloud", grid.grid.nLat, grid.grid.nLon);
+    // The first at info; later ones at debug: a host that ramps a layer changes it every frame.
+    logMessage(weatherBuilds_ == 1 ? LogLevel::Info : LogLevel::Debug,
+               "cigi: weather from the host: %zu cloud layer(s)%s on a %ux%u grid", timeline->snapshot(0).layers.size(),
+               timeline->snapshot(0).high.coverage.empty() ? "" : " + high cloud", grid.grid.nLat, grid.grid.nLon);
     return timeline;
 }
 

@@ -15,12 +15,14 @@
 #include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <thread>
 
 using namespace skytest;
 using namespace sky::cigi;
@@ -114,7 +116,9 @@ struct CloudFrame
 /// `altM`, then returns the next frame.
 bool settledFrame(Ig& ig, double altM, CloudFrame& out, std::string& error)
 {
-    for (int attempt = 0; attempt < 40; ++attempt)
+    // A bound, not a measurement: the weather's window is made on a worker thread, slow on a loaded machine.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (std::chrono::steady_clock::now() < deadline)
     {
         nlohmann::json s = ig.status();
         const nlohmann::json& w = s["weather"];
@@ -129,7 +133,10 @@ bool settledFrame(Ig& ig, double altM, CloudFrame& out, std::string& error)
             return false;
         }
         if (!settled)
+        {
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
             continue;
+        }
         SkyFrame f{};
         if (sky_client_acquire_frame(ig.client, &f) != SKY_OK || f.frame_id < id)
         {
@@ -271,6 +278,24 @@ TEST(ServiceCigi, EnvironmentalConditionsRequestsInBothByteOrders)
     EXPECT_GT(r->weather[0].visibilityM, 10000.0f);
     EXPECT_TRUE(r->aerosol.empty());
     EXPECT_EQ(ig.status()["cigi"]["responses_sent"].get<uint64_t>(), 3u);
+
+    // The host thins the deck to 60 %: the answer follows (3 / (0.045 x 0.6) = 111 m), and the new weather
+    // reaches the frames through the worker thread, as a loaded file does: no frame makes its window.
+    CloudFrame frame;
+    const double altM = 3000 + undulationM(kLat, kLon);
+    ASSERT_TRUE(settledFrame(ig, altM, frame, error)) << error;
+    const nlohmann::json before = ig.status()["windows"];
+    HostDatagram thinner(ByteOrder::Big, 12);
+    thinner.add(cloudLayer(1, CloudType::Stratus, 1000, 600, 60)).add(conditionsRequest(23, kLat, kLon, 1300));
+    ASSERT_TRUE(host.send(thinner.bytes(), ig.port));
+    r = host.receiveForHostFrame(12, kReplyTimeoutMs);
+    ASSERT_TRUE(r);
+    ASSERT_EQ(r->weather.size(), 1u);
+    EXPECT_NEAR(r->weather[0].visibilityM, 3.0 / (0.045 * 0.6), 0.01);
+    ASSERT_TRUE(settledFrame(ig, altM, frame, error)) << error;
+    const nlohmann::json after = ig.status()["windows"];
+    EXPECT_EQ(after["made_on_frame_path"], before["made_on_frame_path"]) << "the host's weather made a frame wait";
+    EXPECT_GT(after["from_worker"].get<uint64_t>(), before["from_worker"].get<uint64_t>());
     EXPECT_EQ(ig.daemon.stop(), 0);
 }
 
@@ -326,6 +351,21 @@ TEST(ServiceCigi, BadDatagramsAreCountedAndTheDaemonRendersOn)
     EXPECT_EQ(shortLogged, 1u) << log;
     EXPECT_NE(log.find("bad_magic"), std::string::npos);
     EXPECT_EQ(ig.daemon.stop(), 0);
+}
+
+// A CIGI port another program holds: the daemon refuses to start (exit 1) and says which port and why.
+TEST(ServiceCigi, PortInUseIsAClearStartupError)
+{
+    CigiTestHost squatter;
+    std::string error;
+    ASSERT_TRUE(squatter.open(error)) << error;
+    TempDir tmp;
+    Daemon d;
+    DaemonConfig c = tinyFrames(0);
+    c.extraSections = "[cigi]\nport = " + std::to_string(squatter.port()) + "\n";
+    ASSERT_FALSE(d.start(tmp.path, c, error));
+    EXPECT_NE(error.find("exited with 1"), std::string::npos) << error;
+    EXPECT_NE(error.find("cigi.port " + std::to_string(squatter.port()) + ": bind"), std::string::npos) << error;
 }
 
 namespace
