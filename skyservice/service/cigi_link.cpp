@@ -109,6 +109,8 @@ void CigiLink::receive()
             if (!datagram.accepted)
                 continue;
             cigi::applyDatagram(state_, datagram, uint16_t(config_.ownship));
+            // A destroyed region stops drawing at once (no fade-out yet): nothing to keep it for.
+            cigi::pruneDestroyedRegions(state_, state_.lastHostFrame);
             if (!haveHost_ || host_.sin_addr.s_addr != from.sin_addr.s_addr)
                 SKY_LOG_INFO("cigi: host %s (%s-endian); replies go to its port %u", addressText(from).c_str(),
                              datagram.order == cigi::ByteOrder::Big ? "big" : "little", config_.replyPort());
