@@ -30,12 +30,12 @@ double roughDistanceM(double lat0, double lon0, double lat1, double lon1)
 
 } // namespace
 
-void CigiApplier::logOnce(const std::string& message)
+void CigiApplier::report(Problem problem, bool failed, const std::string& message)
 {
-    if (message == lastLogged_)
-        return;
-    lastLogged_ = message;
-    SKY_LOG_WARN("cigi: %s", message.c_str());
+    std::string& current = problems_[problem];
+    if (failed && current.empty())
+        SKY_LOG_WARN("cigi: %s (logged once until it works again)", message.c_str());
+    current = failed ? message : std::string();
 }
 
 std::shared_ptr<const WeatherTimeline> CigiApplier::weatherIfChanged(const cigi::CigiState& state, double ownLatDeg,
@@ -55,9 +55,10 @@ std::shared_ptr<const WeatherTimeline> CigiApplier::weatherIfChanged(const cigi:
     std::string error;
     if (!timeline->setSnapshots({cigiWeatherSnapshot(state, grid, geoid_, int64_t(std::floor(simTimeS)))}, error))
     {
-        logOnce("the host's weather was not drawn: " + error);
+        report(kWeather, true, "the host's weather was not drawn: " + error);
         return nullptr;
     }
+    report(kWeather, false, "");
     weatherSignature_ = std::move(signature);
     weatherGrid_ = grid;
     weatherBuilt_ = true;
@@ -95,24 +96,17 @@ void CigiApplier::apply(const cigi::CigiState& state, const cigi::DecodeResult& 
     if (!datagram.accepted)
         return;
     // The eye and the frustum, and the weather, made before taking the service's lock.
+    auto view = state.views.find(viewId_);
+    const bool defined = view != state.views.end() && view->second.defined;
+    const cigi::ViewState* control = view != state.views.end() && view->second.controlled ? &view->second : nullptr;
     EyePose pose;
-    std::string why;
-    const bool havePose = state.ownship.valid && [&]
-    {
-        auto it = state.views.find(viewId_);
-        const cigi::ViewState* view = it != state.views.end() && it->second.controlled ? &it->second : nullptr;
-        return cigiEyePose(state.ownship, view, geoid_, pose, why);
-    }();
-    if (state.ownship.valid && !havePose)
-        logOnce("ownship pose not applied: " + why);
+    std::string poseWhy, viewWhy;
+    const bool havePose = state.ownship.valid && cigiEyePose(state.ownship, control, geoid_, pose, poseWhy);
+    report(kPose, state.ownship.valid && !havePose, "ownship pose not applied: " + poseWhy);
     Frustum frustum;
     double fovYDeg = 0;
-    auto view = state.views.find(viewId_);
-    const bool haveFrustum =
-        view != state.views.end() && view->second.defined && cigiFrustum(view->second, frustum, fovYDeg, why);
-    if (view != state.views.end() && view->second.defined && !haveFrustum)
-        logOnce("view not applied: " + why);
-    lastViewError_ = havePose || !state.ownship.valid ? std::string() : why;
+    const bool haveFrustum = defined && cigiFrustum(view->second, frustum, fovYDeg, viewWhy);
+    report(kView, defined && !haveFrustum, "view not applied: " + viewWhy);
 
     double ownLat = pose.latDeg, ownLon = pose.lonDeg, simTimeS = 0;
     {
@@ -153,7 +147,9 @@ nlohmann::json CigiApplier::statusJson() const
     return {{"weather_builds", weatherBuilds_},
             {"regional_grid", weatherGrid_.regional},
             {"frustum_applied", frustumApplied_},
-            {"view_error", lastViewError_.empty() ? nlohmann::json() : nlohmann::json(lastViewError_)}};
+            {"pose_error", problems_[kPose].empty() ? nlohmann::json() : nlohmann::json(problems_[kPose])},
+            {"view_error", problems_[kView].empty() ? nlohmann::json() : nlohmann::json(problems_[kView])},
+            {"weather_error", problems_[kWeather].empty() ? nlohmann::json() : nlohmann::json(problems_[kWeather])}};
 }
 
 } // namespace sky

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -42,7 +43,15 @@ class CigiApplier
     /// Builds the snapshot when what is drawn changed; null when nothing is to be swapped in.
     std::shared_ptr<const WeatherTimeline> weatherIfChanged(const cigi::CigiState& state, double ownLatDeg,
                                                             double ownLonDeg, double simTimeS);
-    void logOnce(const std::string& message);
+    /// What can fail when applying: each is logged when it starts failing, not again until it has worked.
+    enum Problem
+    {
+        kPose,
+        kView,
+        kWeather,
+        kProblemCount
+    };
+    void report(Problem problem, bool failed, const std::string& message);
 
     uint16_t viewId_;
     const cigi::GeoidGrid& geoid_;
@@ -50,7 +59,7 @@ class CigiApplier
     CigiWeatherGrid weatherGrid_;
     bool weatherBuilt_ = false;
     uint64_t weatherBuilds_ = 0;
-    std::string lastViewError_, lastLogged_;
+    std::array<std::string, kProblemCount> problems_; ///< the current failure of each ("" = none)
     bool frustumApplied_ = false;
 };
 

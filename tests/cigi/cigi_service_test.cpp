@@ -332,5 +332,38 @@ TEST(CigiApply, DatagramDrivesTheNextFrame)
     EXPECT_EQ(service.clock.jumps, jumps + 1);
 }
 
+// A pose the renderer cannot draw (200 km up) or a frustum it cannot (88 degrees to one side) leaves the last
+// good one in the frame and is reported in status until a good one comes.
+TEST(CigiApply, UndrawablePoseOrViewKeepsTheLastGoodOne)
+{
+    ServiceState service;
+    CigiState state;
+    Decoder decoder;
+    CigiApplier applier(0, egm96());
+    auto send = [&](const HostDatagram& d) {
+        DecodeResult r = decoder.decode(d.bytes().data(), d.bytes().size());
+        ASSERT_TRUE(r.accepted);
+        applyDatagram(state, r, 0);
+        applier.apply(state, r, service);
+    };
+    HostDatagram good(ByteOrder::Big, 1);
+    good.add(ownshipAt(0, 45, 7, 3000)).add(viewDefinition(0, -30, 30, 20, -20));
+    send(good);
+    const ViewRequest before = service.view;
+    EXPECT_TRUE(applier.statusJson()["pose_error"].is_null());
+    HostDatagram bad(ByteOrder::Big, 2);
+    bad.add(ownshipAt(0, 46, 7, 200000)).add(viewDefinition(0, -88, 30, 20, -20));
+    send(bad);
+    EXPECT_DOUBLE_EQ(service.view.pose.latDeg, before.pose.latDeg);
+    EXPECT_DOUBLE_EQ(service.view.frustum.leftDeg, 30.0);
+    nlohmann::json status = applier.statusJson();
+    EXPECT_NE(status["pose_error"].get<std::string>().find("altitude"), std::string::npos) << status.dump();
+    EXPECT_NE(status["view_error"].get<std::string>().find("-85, 85"), std::string::npos) << status.dump();
+    send(good);
+    status = applier.statusJson();
+    EXPECT_TRUE(status["pose_error"].is_null());
+    EXPECT_TRUE(status["view_error"].is_null());
+}
+
 } // namespace
 } // namespace sky
