@@ -97,6 +97,14 @@ void addDaemonOptions(CLI::App& app, DaemonOptions& d)
     app.add_option("--log-level", d.logLevel, "error | warn | info | debug (overrides service.log_level)");
     app.add_option("--device", d.device, "Vulkan device: index or part of its name (overrides service.device)");
     app.add_flag("--validate", d.validate, "Enable the Vulkan validation layers (any message: exit 1)");
+    app.add_option("--cigi-port", d.cigiPort, "CIGI 3.3: UDP port the host sends to (overrides cigi.port)")
+        ->check(CLI::Range(int64_t(1), int64_t(65534)));
+    app.add_option("--cigi-host-port", d.cigiHostPort, "CIGI: port replies go to on the host (default: port + 1)")
+        ->check(CLI::Range(int64_t(1), int64_t(65535)));
+    app.add_option("--cigi-view-id", d.cigiViewId, "CIGI: the view (View Definition) this daemon renders")
+        ->check(CLI::Range(int64_t(0), int64_t(65535)));
+    app.add_option("--cigi-ownship", d.cigiOwnship, "CIGI: the entity whose pose drives the eye")
+        ->check(CLI::Range(int64_t(0), int64_t(65535)));
 }
 #endif
 

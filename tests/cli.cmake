@@ -75,3 +75,5 @@ add_test(NAME cli.render.no_vulkan_driver COMMAND ${CMAKE_COMMAND} -E env VK_DRI
 # A device index that does not exist is named.
 add_test(NAME cli.render.no_such_device COMMAND ${SKY_EXPECT} 1 "--device 42" ${SKY_BIN} render --device 42
          --quality test --width 16 --height 16 --out ${SKY_CLI_TMP}/never)
+# The CIGI options (issue 21) are range-checked like the others.
+add_test(NAME cli.daemon.bad_cigi_port COMMAND ${SKY_EXPECT} 2 "--cigi-port" ${SKY_BIN} --cigi-port 70000)

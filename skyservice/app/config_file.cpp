@@ -85,8 +85,8 @@ bool applyConfigFile(const std::string& path, QualitySettings& quality, std::str
     const std::map<std::string, Key> known = keys();
     std::string bad;
     table.for_each([&](const toml::key& section, auto&& node) {
-        // [service] belongs to the daemon (skyservice/service/service_config.h), read from the same file.
-        if (!bad.empty() || section.str() == "service")
+        // [service] and [cigi] belong to the daemon (skyservice/service/service_config.h), read from the same file.
+        if (!bad.empty() || section.str() == "service" || section.str() == "cigi")
             return;
         if constexpr (!toml::is_table<decltype(node)>)
         {

@@ -305,7 +305,13 @@ void ControlLoop::subscribe(ClientId client, const Request& request)
 nlohmann::json ControlLoop::statusJson()
 {
     ServiceState& s = *c_.state;
+    // Before ServiceState's mutex: the CIGI link takes its own lock first, then that one.
+    nlohmann::json cigi = c_.cigi ? c_.cigi->statusJson() : nlohmann::json();
     std::lock_guard<std::mutex> lock(s.mutex);
+    if (c_.cigi)
+        cigi["frustum"] = {{"asymmetric", s.view.frustum.asymmetric}, {"left", s.view.frustum.leftDeg},
+                           {"right", s.view.frustum.rightDeg},        {"up", s.view.frustum.upDeg},
+                           {"down", s.view.frustum.downDeg}};
     nlohmann::json weather = {{"source", s.weather.source}, {"valid_time", nullptr}, {"last_error", nullptr}};
     if (s.weather.timeline && !s.weather.timeline->empty())
     {
@@ -342,6 +348,7 @@ nlohmann::json ControlLoop::statusJson()
             {"weather", weather},
             {"windows", {{"made_on_frame_path", s.windowsMadeOnFramePath}, {"from_worker", s.windowsFromWorker}}},
             {"last_render_error", s.lastRenderError.empty() ? nlohmann::json() : nlohmann::json(s.lastRenderError)},
+            {"cigi", cigi},
             {"clients", c_.server->clientCount()},
             {"uptime_s", uptime}};
 }

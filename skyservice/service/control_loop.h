@@ -8,6 +8,7 @@
 #include "skyservice/ipc/control_socket.h"
 #include "skyservice/ipc/protocol.h"
 #include "skyservice/ipc/shm_ring.h"
+#include "skyservice/service/cigi_link.h"
 #include "skyservice/service/service_state.h"
 #include "skyservice/service/weather_loader.h"
 
@@ -23,6 +24,7 @@ struct ControlContext
     ServiceState* state = nullptr;
     WeatherLoader* loader = nullptr;
     const ShmRingWriter* ring = nullptr;
+    const CigiLink* cigi = nullptr;  ///< null: no [cigi] port
     ProtocolLimits limits;
     std::string deviceName, driver;
     SteadyClock::time_point startedAt = SteadyClock::now();

@@ -4,6 +4,7 @@
 #include "skyservice/ipc/control_socket.h"
 #include "skyservice/ipc/shm_ring.h"
 #include "skyservice/render/renderer.h"
+#include "skyservice/service/cigi_link.h"
 #include "skyservice/service/control_loop.h"
 #include "skyservice/service/log.h"
 #include "skyservice/service/render_loop.h"
@@ -50,6 +51,7 @@ private:
     WeatherWatcher watcher_;
     SignalWatcher signals_;
     RenderLoop renderLoop_;
+    CigiLink cigi_;
     std::atomic<bool> terminate_{false}, hangup_{false};
 };
 
@@ -65,6 +67,14 @@ bool Daemon::readConfig(ServiceConfig& out, std::string& error) const
     if (!options_.device.empty())
         out.device = options_.device;
     out.validate = out.validate || options_.validate;
+    if (options_.cigiPort >= 0)
+        out.cigi.port = uint32_t(options_.cigiPort);
+    if (options_.cigiHostPort >= 0)
+        out.cigi.hostPort = uint32_t(options_.cigiHostPort);
+    if (options_.cigiViewId >= 0)
+        out.cigi.viewId = uint32_t(options_.cigiViewId);
+    if (options_.cigiOwnship >= 0)
+        out.cigi.ownship = uint32_t(options_.cigiOwnship);
     if (!options_.logLevel.empty() && !parseLogLevel(options_.logLevel, out.logLevel))
     {
         error = "--log-level " + options_.logLevel + ": expected error, warn, info or debug";
@@ -133,6 +143,9 @@ void Daemon::reload()
     keep(fresh.shmSlots != config_.shmSlots, "shm_slots");
     keep(fresh.shadowMapSize != config_.shadowMapSize, "shadow_map_size");
     keep(fresh.device != config_.device || fresh.validate != config_.validate, "device/validate");
+    if (!(fresh.cigi == config_.cigi))
+        SKY_LOG_WARN("SIGHUP: [cigi] changed: takes effect after a restart");
+    fresh.cigi = config_.cigi;
     fresh.socketPath = config_.socketPath;
     fresh.socketMode = config_.socketMode;
     fresh.shmName = config_.shmName;
@@ -246,6 +259,11 @@ int Daemon::run()
         onWeather(path, std::move(t), e);
     });
     startWatcher(config_.weatherDir);
+    if (config_.cigi.port != 0 && !cigi_.start(config_.cigi, &state_, error))
+    {
+        SKY_LOG_ERROR("%s", error.c_str());
+        return shutdown(kExitFailure);
+    }
 
     ControlContext cc;
     cc.server = &server_;
@@ -256,6 +274,7 @@ int Daemon::run()
     cc.limits.maxHeight = config_.maxHeight;
     cc.deviceName = renderer_.ctx.deviceName;
     cc.driver = renderer_.ctx.driverInfo;
+    cc.cigi = cigi_.running() ? &cigi_ : nullptr;
     ControlLoop control(cc);
     ControlSocketServer::Handlers handlers = control.handlers();
 
@@ -268,6 +287,8 @@ int Daemon::run()
     setup.exportMaxWidth = config_.maxWidth;
     setup.exportMaxHeight = config_.maxHeight;
     setup.exportShadowSize = config_.shadowMapSize;
+    if (cigi_.running())
+        setup.frameEnded = [this](uint64_t id, bool ok) { cigi_.frameEnded(id, ok); };
     renderLoop_.start(setup);
 
     while (!terminate_.load())
@@ -284,6 +305,7 @@ int Daemon::run()
 int Daemon::shutdown(int code)
 {
     renderLoop_.stop();  // first: it uses the ring, the renderer and the export
+    cigi_.stop();        // after it: the render loop sends Start of Frame through it
     watcher_.stop();     // before the loader it feeds
     loader_.stop();
     signals_.stop();

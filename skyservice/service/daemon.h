@@ -4,6 +4,7 @@
 // loader and watcher, render loop) until SIGTERM/SIGINT. SIGHUP reloads the config file.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 namespace sky
@@ -18,6 +19,11 @@ struct DaemonOptions
     std::string logLevel;    ///< service.log_level
     std::string device;      ///< service.device
     bool validate = false;   ///< service.validate = true
+    // [cigi] overrides; -1 = as the config file says.
+    int64_t cigiPort = -1;      ///< cigi.port
+    int64_t cigiHostPort = -1;  ///< cigi.host_port
+    int64_t cigiViewId = -1;    ///< cigi.view_id
+    int64_t cigiOwnship = -1;   ///< cigi.ownship
 };
 
 /// Runs until SIGTERM/SIGINT. Returns 0 after a clean shutdown, 1 on a runtime failure (device, socket,

@@ -352,7 +352,7 @@ void RenderLoop::Impl::frameDone(uint64_t id, const SkyStatus& status, double ms
         memory = r.memory.totalBytes;
         hostReadback = r.memory.hostReadbackBytes;
     }
-    std::lock_guard<std::mutex> lock(setup.state->mutex);
+    std::unique_lock<std::mutex> lock(setup.state->mutex);
     ServiceState& s = *setup.state;
     if (status.ok())
     {
@@ -368,6 +368,9 @@ void RenderLoop::Impl::frameDone(uint64_t id, const SkyStatus& status, double ms
     s.deviceMemoryBytes = memory;
     s.hostReadbackBytes = hostReadback;
     SKY_LOG_DEBUG("frame %llu: %.1f ms", (unsigned long long)id, ms);
+    lock.unlock();
+    if (setup.frameEnded)
+        setup.frameEnded(id, status.ok());
 }
 
 bool RenderLoop::Impl::writeFiles(const std::string& prefix, const std::string& format, std::string& error)

@@ -28,6 +28,9 @@ public:
         std::function<void()> repliesReady;  ///< called after a reply was queued in state->replies
         uint32_t exportSlots = 3;            ///< images of the zero-copy export (the ring's slot count)
         uint32_t exportMaxWidth = 0, exportMaxHeight = 0, exportShadowSize = 0;
+        /// Called on the render thread after each frame is counted (ok or failed), without ServiceState's
+        /// mutex held: the CIGI link's Start of Frame. Optional.
+        std::function<void(uint64_t frameId, bool ok)> frameEnded;
     };
 
     RenderLoop();

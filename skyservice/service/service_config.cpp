@@ -210,6 +210,31 @@ bool readView(const toml::table& t, ViewRequest& v, std::string& key, std::strin
     return true;
 }
 
+/// [cigi]: port numbers and 16-bit CIGI ids.
+bool readCigi(const toml::table& t, CigiConfig& c, std::string& key, std::string& why)
+{
+    const std::map<std::string, std::pair<uint32_t*, std::pair<int64_t, int64_t>>> fields = {
+        {"port", {&c.port, {1, 65534}}},   // 65534: the default host port is port + 1
+        {"host_port", {&c.hostPort, {1, 65535}}},
+        {"view_id", {&c.viewId, {0, 65535}}},
+        {"ownship", {&c.ownship, {0, 65535}}}};
+    for (auto&& [k, node] : t)
+    {
+        key = "cigi." + std::string(k.str());
+        auto it = fields.find(std::string(k.str()));
+        if (it == fields.end())
+        {
+            why = "unknown key (config/service.toml lists every key)";
+            return false;
+        }
+        int64_t v = 0;
+        if (!readInteger(node, it->second.second.first, it->second.second.second, v, why))
+            return false;
+        *it->second.first = uint32_t(v);
+    }
+    return true;
+}
+
 }  // namespace
 
 std::string defaultSocketPath()
@@ -275,7 +300,21 @@ bool loadServiceConfig(const std::string& path, ServiceConfig& out, std::string&
             return false;
         }
     }
-    // The renderer's sections of the same file, on top of the preset (applyConfigFile skips [service]).
+    if (const toml::node* node = table.get("cigi"))
+    {
+        std::string field = "cigi", why;
+        if (!node->is_table())
+            why = "must be a section [cigi]";
+        else if (readCigi(*node->as_table(), c.cigi, field, why))
+            why.clear();
+        if (!why.empty())
+        {
+            error = path + ": '" + field + "' " + why;
+            return false;
+        }
+    }
+    // The renderer's sections of the same file, on top of the preset (applyConfigFile skips [service] and
+    // [cigi]).
     CommonRenderOptions o;
     o.quality = c.quality;
     o.config = path;
@@ -301,6 +340,12 @@ bool checkServiceConfig(const ServiceConfig& c, const std::string& where, std::s
         return fail("service.socket_path", "is empty");
     if (c.shadowMapSize > 0 && c.shadowMapSize < 8)
         return fail("service.shadow_map_size", "must be 0 (none) or at least 8");
+    if (c.cigi.port > 65534)
+        return fail("cigi.port", "= " + std::to_string(c.cigi.port) + " is outside [1, 65534]");
+    if (c.cigi.hostPort > 65535)
+        return fail("cigi.host_port", "= " + std::to_string(c.cigi.hostPort) + " is outside [1, 65535]");
+    if (c.cigi.viewId > 65535 || c.cigi.ownship > 65535)
+        return fail(c.cigi.viewId > 65535 ? "cigi.view_id" : "cigi.ownship", "is outside [0, 65535]");
     return true;
 }
 

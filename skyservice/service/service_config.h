@@ -13,6 +13,18 @@
 namespace sky
 {
 
+/// [cigi]: the CIGI 3.3 IG interface (skyservice/service/cigi_link.h); off while port is 0.
+struct CigiConfig
+{
+    uint32_t port = 0;      ///< UDP port the host sends to (host -> IG); 0 = no CIGI
+    uint32_t hostPort = 0;  ///< port on the sender's address that Start of Frame and responses go to; 0 = port + 1
+    uint32_t viewId = 0;    ///< the View Definition / View Control this daemon renders
+    uint32_t ownship = 0;   ///< the entity whose Entity Control poses the eye
+
+    uint32_t replyPort() const { return hostPort != 0 ? hostPort : port + 1; }
+    bool operator==(const CigiConfig&) const = default;
+};
+
 struct ServiceConfig
 {
     std::string path;               ///< the file it was read from ("" = built-in defaults)
@@ -38,6 +50,7 @@ struct ServiceConfig
     double rate = 0;                ///< initial sim seconds per real second (0 = frozen)
     std::string quality = "medium"; ///< preset: high | medium | test
     QualitySettings qualitySettings;///< the preset with the file's renderer sections applied
+    CigiConfig cigi;                ///< [cigi]
 };
 
 /// $XDG_RUNTIME_DIR/skyservice.sock, else /tmp/skyservice-<uid>.sock.

@@ -27,6 +27,7 @@ TEST(ServiceConfig, ExampleFileIsValidAndDocumentsTheDefaults)
     EXPECT_EQ(c.view.width, d.view.width);
     EXPECT_EQ(c.timeUnixS, d.timeUnixS);
     EXPECT_EQ(c.qualitySettings.maxViewSteps, d.qualitySettings.maxViewSteps);
+    EXPECT_EQ(c.cigi.port, 0u);  // CIGI is off unless asked for
     // The renderer's reader accepts a file with a [service] section.
     QualitySettings q;
     EXPECT_TRUE(applyConfigFile(path, q, error)) << error;
@@ -51,6 +52,11 @@ TEST(ServiceConfig, BadValuesNameFileAndField)
         {"[service.view]\nlat = 95\n", "service.view.lat"},
         {"[service.view]\nwidth = 10.5\n", "service.view.width"},
         {"[service]\n[march]\nmax_view_steps = 2\n", "march.max_view_steps"},
+        {"[cigi]\nport = 70000\n", "cigi.port"},
+        {"[cigi]\nport = \"8004\"\n", "cigi.port"},
+        {"[cigi]\nview_id = -1\n", "cigi.view_id"},
+        {"[cigi]\nwindow = 1\n", "cigi.window"},
+        {"cigi = 8004\n", "cigi"},
     };
     for (const Case& k : cases)
     {
@@ -69,4 +75,25 @@ TEST(ServiceConfig, BadValuesNameFileAndField)
     std::string error;
     EXPECT_FALSE(checkServiceConfig(c, "f.toml", error));
     EXPECT_NE(error.find("service.view.width"), std::string::npos) << error;
+}
+
+// [cigi]: the port, the reply port (default port + 1), the view and the ownship; the renderer's reader
+// skips the section.
+TEST(ServiceConfig, CigiSection)
+{
+    skytest::TempDir tmp;
+    std::string path = tmp.path + "/cigi.toml";
+    std::ofstream(path) << "[cigi]\nport = 8004\nview_id = 2\nownship = 17\n";
+    ServiceConfig c = defaultServiceConfig();
+    std::string error;
+    ASSERT_TRUE(loadServiceConfig(path, c, error)) << error;
+    EXPECT_EQ(c.cigi.port, 8004u);
+    EXPECT_EQ(c.cigi.replyPort(), 8005u);
+    EXPECT_EQ(c.cigi.viewId, 2u);
+    EXPECT_EQ(c.cigi.ownship, 17u);
+    std::ofstream(path) << "[cigi]\nport = 8004\nhost_port = 9000\n";
+    ASSERT_TRUE(loadServiceConfig(path, c, error)) << error;
+    EXPECT_EQ(c.cigi.replyPort(), 9000u);
+    QualitySettings q;
+    EXPECT_TRUE(applyConfigFile(path, q, error)) << error;
 }

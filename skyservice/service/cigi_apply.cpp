@@ -1,0 +1,155 @@
+// SPDX-License-Identifier: MIT
+#include "skyservice/service/cigi_apply.h"
+
+#include "skyservice/service/cigi_view.h"
+#include "skyservice/service/log.h"
+#include "skyservice/service/weather_schedule.h"
+
+#include <algorithm>
+#include <cmath>
+#include <variant>
+
+namespace sky
+{
+namespace
+{
+
+template <typename Packet> bool contains(const cigi::DecodeResult& datagram)
+{
+    return std::any_of(datagram.packets.begin(), datagram.packets.end(),
+                       [](const cigi::HostPacket& p) { return std::holds_alternative<Packet>(p); });
+}
+
+/// Distance (m) between two points, small-distance approximation (the regional grid's drift).
+double roughDistanceM(double lat0, double lon0, double lat1, double lon1)
+{
+    constexpr double kMetresPerDegree = 111195.0;
+    double dLon = std::fmod(lon1 - lon0 + 540.0, 360.0) - 180.0;
+    return kMetresPerDegree * std::hypot(lat1 - lat0, dLon * std::cos(lat0 * M_PI / 180.0));
+}
+
+} // namespace
+
+void CigiApplier::report(Problem problem, bool failed, const std::string& message)
+{
+    std::string& current = problems_[problem];
+    if (failed && current.empty())
+        SKY_LOG_WARN("cigi: %s (logged once until it works again)", message.c_str());
+    current = failed ? message : std::string();
+}
+
+std::shared_ptr<const WeatherTimeline> CigiApplier::weatherIfChanged(const cigi::CigiState& state, double ownLatDeg,
+                                                                     double ownLonDeg, double simTimeS)
+{
+    if (!cigiHasCloudWeather(state))
+        return nullptr; // the configured weather stays until the host sets a cloud layer
+    std::vector<double> signature = cigiWeatherSignature(state);
+    // A regional grid follows the ownship: remade when it has come a quarter of the way to the grid's edge.
+    const bool drifted = weatherGrid_.regional &&
+                         roughDistanceM(weatherGrid_.centreLatDeg, weatherGrid_.centreLonDeg, ownLatDeg, ownLonDeg) >
+                             0.25 * weatherGrid_.halfExtentM;
+    if (weatherBuilt_ && signature == weatherSignature_ && !drifted)
+        return nullptr;
+    CigiWeatherGrid grid = cigiWeatherGrid(state, ownLatDeg, ownLonDeg);
+    auto timeline = std::make_shared<WeatherTimeline>();
+    std::string error;
+    if (!timeline->setSnapshots({cigiWeatherSnapshot(state, grid, geoid_, int64_t(std::floor(simTimeS)))}, error))
+    {
+        report(kWeather, true, "the host's weather was not drawn: " + error);
+        return nullptr;
+    }
+    report(kWeather, false, "");
+    weatherSignature_ = std::move(signature);
+    weatherGrid_ = grid;
+    weatherBuilt_ = true;
+    ++weatherBuilds_;
+    // The first at info; later ones at debug: a host that ramps a layer changes it every frame.
+    logMessage(weatherBuilds_ == 1 ? LogLevel::Info : LogLevel::Debug,
+               "cigi: weather from the host: %zu cloud layer(s)%s on a %ux%u grid", timeline->snapshot(0).layers.size(),
+               timeline->snapshot(0).high.coverage.empty() ? "" : " + high cloud", grid.grid.nLat, grid.grid.nLon);
+    return timeline;
+}
+
+void CigiApplier::applyTime(const cigi::CigiState& state, ServiceState& s)
+{
+    // Caller holds s.mutex. CIGI 3.3 sets hours and minutes: a host that resends the same minute every frame
+    // must not pull a running clock back to its start, so the clock is re-based only when the minute or the
+    // ephemeris flag changes. A change of more than the weather's re-sample interval is a jump in time.
+    const cigi::SimulatedTime& t = state.time;
+    const double rate = t.ephemerisEnable ? 1.0 : 0.0;
+    const SteadyClock::time_point now = SteadyClock::now();
+    const double current = s.clock.nowUnixS(now);
+    double target = current;
+    if (t.valid && std::floor(current / 60.0) != std::floor(t.unixTimeS() / 60.0))
+        target = t.unixTimeS();
+    if (target == current && rate == s.clock.rate)
+        return;
+    if (std::fabs(target - current) > kWeatherResampleS)
+        ++s.clock.jumps;
+    s.clock.baseUnixS = target;
+    s.clock.baseReal = now;
+    s.clock.rate = rate;
+}
+
+void CigiApplier::apply(const cigi::CigiState& state, const cigi::DecodeResult& datagram, ServiceState& s)
+{
+    if (!datagram.accepted)
+        return;
+    // The eye and the frustum, and the weather, made before taking the service's lock.
+    auto view = state.views.find(viewId_);
+    const bool defined = view != state.views.end() && view->second.defined;
+    const cigi::ViewState* control = view != state.views.end() && view->second.controlled ? &view->second : nullptr;
+    EyePose pose;
+    std::string poseWhy, viewWhy;
+    const bool havePose = state.ownship.valid && cigiEyePose(state.ownship, control, geoid_, pose, poseWhy);
+    report(kPose, state.ownship.valid && !havePose, "ownship pose not applied: " + poseWhy);
+    Frustum frustum;
+    double fovYDeg = 0;
+    const bool haveFrustum = defined && cigiFrustum(view->second, frustum, fovYDeg, viewWhy);
+    report(kView, defined && !haveFrustum, "view not applied: " + viewWhy);
+
+    double ownLat = pose.latDeg, ownLon = pose.lonDeg, simTimeS = 0;
+    {
+        std::lock_guard<std::mutex> lock(s.mutex);
+        if (!havePose)
+            ownLat = s.view.pose.latDeg, ownLon = s.view.pose.lonDeg;
+        simTimeS = s.clock.nowUnixS();
+    }
+    std::shared_ptr<const WeatherTimeline> weather = weatherIfChanged(state, ownLat, ownLon, simTimeS);
+
+    {
+        std::lock_guard<std::mutex> lock(s.mutex);
+        if (havePose)
+            s.view.pose = pose;
+        if (haveFrustum)
+        {
+            s.view.frustum = frustum;
+            s.view.fovYDeg = std::clamp(fovYDeg, 1.0, 170.0);
+            frustumApplied_ = true;
+        }
+        if (contains<cigi::CelestialSphereControl>(datagram))
+            applyTime(state, s);
+        if (weather)
+        {
+            s.weather.timeline = std::move(weather);
+            s.weather.source = "cigi";
+            s.weather.lastError.clear();
+            ++s.weather.version;
+        }
+        if (s.renderRateHz == 0)
+            s.renderWantedUpTo = std::max(s.renderWantedUpTo, s.framesStarted + 1);
+    }
+    s.wake.notify_all();
+}
+
+nlohmann::json CigiApplier::statusJson() const
+{
+    return {{"weather_builds", weatherBuilds_},
+            {"regional_grid", weatherGrid_.regional},
+            {"frustum_applied", frustumApplied_},
+            {"pose_error", problems_[kPose].empty() ? nlohmann::json() : nlohmann::json(problems_[kPose])},
+            {"view_error", problems_[kView].empty() ? nlohmann::json() : nlohmann::json(problems_[kView])},
+            {"weather_error", problems_[kWeather].empty() ? nlohmann::json() : nlohmann::json(problems_[kWeather])}};
+}
+
+} // namespace sky
