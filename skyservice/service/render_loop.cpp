@@ -4,6 +4,7 @@
 #include "skyservice/app/render_files.h"
 #include "skyservice/ipc/protocol.h"
 #include "skyservice/service/log.h"
+#include "skyservice/service/shm_view.h"
 #include "skyservice/service/vulkan_export.h"
 #include "skyservice/service/weather_schedule.h"
 #include "skyservice/sky/ephemeris.h"
@@ -19,12 +20,6 @@ namespace sky
 {
 namespace
 {
-
-double lonToRange(double lonDeg)
-{
-    double l = std::fmod(lonDeg + 180.0, 360.0);
-    return (l < 0 ? l + 360.0 : l) - 180.0;
-}
 
 SkyShmShadowGeoRef shadowGeoRef(const RenderResult& result)
 {
@@ -283,9 +278,7 @@ void RenderLoop::Impl::completeFrame(InFlightFrame& frame)
         f.frameId = frame.id;
         f.simTimeUnixS = frame.simTimeS;
         f.exposure = result.exposure;
-        f.view = SkyShmView{request.pose.latDeg, lonToRange(request.pose.lonDeg), request.pose.altitudeM,
-                            request.pose.headingDeg, request.pose.pitchDeg, request.pose.rollDeg, request.fovYDeg,
-                            request.width, request.height};
+        f.view = shmViewOf(request);
         f.format = SKY_FORMAT_RGBA8_SRGB;
         f.width = result.width;
         f.height = result.height;

@@ -128,6 +128,18 @@ TEST(MemoryBudget, At1080pEachModeStaysWithin64MB)
         for (int k = 0; k < 2; ++k)
             ASSERT_TRUE(renderView(r, v, q, result).ok());
         const uint64_t total = r.memory.totalBytes;
+        // What the service renders for a display subscriber: the display read back into host-cached memory
+        // (system RAM, counted apart), no device memory added.
+        q.readback = true;
+        v.readback = kReadDisplay;
+        ASSERT_TRUE(renderView(r, v, q, result).ok());
+        ASSERT_TRUE(renderView(r, v, q, result).ok());
+        EXPECT_EQ(r.memory.totalBytes, total) << (reprojected ? "reprojected" : "full");
+        EXPECT_LE(r.memory.hostReadbackBytes, 2 * (uint64_t(1920) * 1080 * 4 + 65536));
+        std::printf("1920x1080 %s, display read back: %.2f MB device, %.2f MB host readback\n",
+                    reprojected ? "reprojected" : "full", double(r.memory.totalBytes) * 1e-6,
+                    double(r.memory.hostReadbackBytes) * 1e-6);
+        q.readback = false;
         q.linearOutput = true;
         ASSERT_TRUE(renderView(r, v, q, result).ok());
         std::printf("1920x1080 %s: %.2f MB (%.2f MiB) without the linear frame, %.2f MB with it\n",
