@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: MIT
+// End-to-end (issue 24): hostile weather files and configs. The daemon keeps serving, says what was
+// wrong, and never wedges its weather loader.
+#include "tests/service/service_harness.h"
+
+#include "weather_ingest/crc32c.h"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <cstring>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <sys/stat.h>
+#include <thread>
+#include <unistd.h>
+
+using namespace skytest;
+using nlohmann::json;
+
+namespace
+{
+
+constexpr int64_t kMidsummerNoon = 1782043200;  // 2026-06-21T12:00:00Z
+
+std::string readFile(const std::string& path)
+{
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+/// A snapshot whose header (checksum included) is valid and whose metadata declares a level field of
+/// 8192 x 8192 x 1000 floats; the file is a hole of that length (12 KB stored).
+bool writeHugeSparseSnapshot(const std::string& path)
+{
+    const uint64_t values = uint64_t(8192) * 8192 * 1000;
+    json meta = {{"validTimeUnixS", 0},
+                 {"grid", {{"lat0Deg", 81.9}, {"lon0Deg", 0.0}, {"dLatDeg", -0.02}, {"dLonDeg", 0.04}, {"nLat", 8192},
+                           {"nLon", 8192}}},
+                 {"layers", json::array()},
+                 {"levelFields", {{{"name", "q"}, {"units", "kg/kg"}, {"pressurePa", std::vector<float>(1000, 5e4f)}}}},
+                 {"provenance", json::object()},
+                 {"arrays", {{{"name", "levelFields/0/values"}, {"type", "f32"}, {"count", values}}}}};
+    const std::string text = meta.dump();
+    const uint64_t total = 32 + 4 + text.size() + values * 4;
+    uint8_t header[32] = {0x89, 'S', 'K', 'Y', 'W', 'X', '\r', '\n'};
+    const uint32_t version = 1, count = 1, metaBytes = uint32_t(text.size());
+    const uint64_t payloadBytes = total - 32;
+    std::memcpy(header + 8, &version, 4);
+    std::memcpy(header + 12, &count, 4);
+    std::memcpy(header + 16, &payloadBytes, 8);
+    const uint32_t headerCrc = sky::crc32c(header, 28);
+    std::memcpy(header + 28, &headerCrc, 4);
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    bool ok = fd >= 0 && ::write(fd, header, 32) == 32 && ::write(fd, &metaBytes, 4) == 4 &&
+              ::write(fd, text.data(), text.size()) == ssize_t(text.size()) && ::ftruncate(fd, off_t(total)) == 0;
+    if (fd >= 0)
+        ::close(fd);
+    return ok;
+}
+
+}  // namespace
+
+// Before issue 24 the loader thread allocated the declared 256 GB, std::bad_alloc escaped it and the
+// daemon aborted (rc 134). Now the file is refused, named in status, and the daemon keeps serving.
+TEST(ServiceHostile, HugeDeclaredSnapshotIsRefusedAndTheDaemonLives)
+{
+    TempDir tmp;
+    Daemon d;
+    std::string error;
+    ASSERT_TRUE(d.start(tmp.path, tinyFrames(), error)) << error;
+    RawClient c;
+    ASSERT_TRUE(c.open(d.socketPath));
+    const std::string huge = tmp.path + "/huge.skywx";
+    ASSERT_TRUE(writeHugeSparseSnapshot(huge));
+    json r = c.request({{"type", "load_weather"}, {"path", huge}});
+    ASSERT_EQ(r.value("type", ""), "ok") << r;
+    json s;
+    ASSERT_TRUE(waitForStatus(c, [](const json& j) { return j["weather"]["last_error"].is_string(); }, 20000, &s))
+        << s << readFile(d.logPath);
+    EXPECT_EQ(s["weather"]["source"], "builtin");
+    EXPECT_TRUE(d.running());
+    EXPECT_EQ(d.stop(), 0) << readFile(d.logPath);
+}
