@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -377,12 +378,24 @@ bool parseSnapshotBytes(const void* data, size_t size, const std::string& name, 
 bool readSnapshotFile(const std::string& path, std::vector<WeatherSnapshot>& out, std::string& error)
 {
     out.clear();
-    std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
-    if (!f)
-        return fail(error, path, std::string("cannot open: ") + std::strerror(errno));
+    // O_NONBLOCK: opening a FIFO must not wait for a writer (it would wedge a loader thread for good);
+    // O_NOFOLLOW: a link is refused, not followed. Whatever was opened is then checked before reading.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0)
+        return fail(error, path, errno == ELOOP ? std::string("is a symbolic link (weather files are not followed)")
+                                                : std::string("cannot open: ") + std::strerror(errno));
     struct stat st = {};
-    if (fstat(fileno(f.get()), &st) != 0 || !S_ISREG(st.st_mode))
-        return fail(error, path, "not a regular file");
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))
+    {
+        ::close(fd);
+        return fail(error, path, "not a regular file (FIFOs, devices and folders are refused)");
+    }
+    std::unique_ptr<std::FILE, FileCloser> f(::fdopen(fd, "rb"));
+    if (!f)
+    {
+        ::close(fd);
+        return fail(error, path, std::string("cannot open: ") + std::strerror(errno));
+    }
     uint8_t header[kHeaderBytes] = {};
     const size_t got = std::fread(header, 1, kHeaderBytes, f.get());
     const uint64_t total = uint64_t(st.st_size);

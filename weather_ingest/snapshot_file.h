@@ -51,7 +51,8 @@ inline constexpr uint32_t kMaxSnapshotsPerFile = 4096;
 /// @return true when the snapshot can be written and rendered.
 bool validateSnapshot(const WeatherSnapshot& snapshot, std::string& error);
 
-/// Reads every snapshot of a file.
+/// Reads every snapshot of a file. The file is opened without following a symbolic link and without
+/// blocking, and anything but a regular file (a FIFO, a device, a folder) is refused at once.
 ///
 /// @param[in] path the file.
 /// @param[out] out the snapshots in file order; cleared first, and left empty on failure.

@@ -11,9 +11,12 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstring>
+#include <future>
 #include <fcntl.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace sky
@@ -100,6 +103,44 @@ TEST(SnapshotHostile, SparseOrCorruptFileNeverGrowsMemoryByTheDeclaredSize)
     EXPECT_NE(error.find("sparse.skywx"), std::string::npos) << error;
     EXPECT_LT(peakRssKb() - before, 64 * 1024) << "peak RSS grew by the declared array: " << error;
     std::remove(path.c_str());
+}
+
+// Before issue 24 a FIFO made the reader block in open() until a writer came (the daemon's weather
+// loader wedged for good). It is refused at once now, as are symbolic links and devices. (If the
+// reader ever blocks again, the test unblocks it by opening the FIFO itself and fails.)
+TEST(SnapshotHostile, FifosLinksAndDevicesAreRefusedAtOnce)
+{
+    const std::string fifo = test::tempPath("pipe.skywx");
+    std::remove(fifo.c_str());
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    auto reading = std::async(std::launch::async, [&] {
+        std::vector<WeatherSnapshot> out;
+        std::string error;
+        const bool ok = readSnapshotFile(fifo, out, error);
+        return std::make_pair(ok, error);
+    });
+    if (reading.wait_for(std::chrono::seconds(10)) != std::future_status::ready)
+    {
+        const int unblock = ::open(fifo.c_str(), O_WRONLY);  // lets the blocked open() return
+        reading.wait();
+        ::close(unblock);
+        FAIL() << "the reader blocked on a FIFO";
+    }
+    const auto [ok, error] = reading.get();
+    EXPECT_FALSE(ok);
+    EXPECT_NE(error.find("not a regular file"), std::string::npos) << error;
+
+    const std::string good = test::tempPath("good.skywx"), link = test::tempPath("link.skywx");
+    std::string e;
+    ASSERT_TRUE(writeSnapshotFile(good, {test::makeSnapshot(0, 0.5f)}, e)) << e;
+    std::remove(link.c_str());
+    ASSERT_EQ(::symlink(good.c_str(), link.c_str()), 0);
+    std::vector<WeatherSnapshot> out;
+    EXPECT_FALSE(readSnapshotFile(link, out, e));
+    EXPECT_NE(e.find("symbolic link"), std::string::npos) << e;
+    EXPECT_FALSE(readSnapshotFile("/dev/zero", out, e));
+    EXPECT_NE(e.find("not a regular file"), std::string::npos) << e;
+    EXPECT_TRUE(readSnapshotFile(good, out, e)) << e;
 }
 
 }  // namespace

@@ -83,3 +83,32 @@ TEST(ServiceHostile, HugeDeclaredSnapshotIsRefusedAndTheDaemonLives)
     EXPECT_TRUE(d.running());
     EXPECT_EQ(d.stop(), 0) << readFile(d.logPath);
 }
+
+// Before issue 24 load_weather of a FIFO blocked the loader thread in open() for good: every later
+// load was dropped, and SIGTERM hung. A FIFO renamed into the watched folder did the same. Both are
+// refused at once now (the watcher does not even queue it), and a good file loads right after.
+TEST(ServiceHostile, FifoNeverWedgesTheWeatherLoader)
+{
+    TempDir tmp;
+    const std::string wx = tmp.path + "/weather";
+    std::filesystem::create_directory(wx);
+    Daemon d;
+    std::string error;
+    DaemonConfig cfg = tinyFrames();
+    cfg.weatherDir = wx;
+    ASSERT_TRUE(d.start(tmp.path, cfg, error)) << error;
+    RawClient c;
+    ASSERT_TRUE(c.open(d.socketPath));
+    const std::string fifo = tmp.path + "/pipe.skywx";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    json r = c.request({{"type", "load_weather"}, {"path", fifo}});
+    ASSERT_EQ(r.value("type", ""), "ok") << r;
+    json s;
+    ASSERT_TRUE(waitForStatus(c, [](const json& j) { return j["weather"]["last_error"].is_string(); }, 10000, &s))
+        << s;
+    ASSERT_EQ(::rename(fifo.c_str(), (wx + "/pipe.skywx").c_str()), 0);
+    const std::string good = wx + "/good.skywx";
+    ASSERT_TRUE(writeBuiltinSnapshot(good, kMidsummerNoon, error)) << error;
+    ASSERT_TRUE(waitForStatus(c, [&](const json& j) { return j["weather"]["source"] == good; }, 10000, &s)) << s;
+    EXPECT_EQ(d.stop(), 0) << readFile(d.logPath);
+}
