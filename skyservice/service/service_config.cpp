@@ -5,10 +5,13 @@
 #include "skyservice/app/toml_file.h"
 #include "skyservice/sky/ephemeris.h"
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace sky
@@ -238,9 +241,27 @@ ServiceConfig defaultServiceConfig()
 
 bool loadServiceConfig(const std::string& path, ServiceConfig& out, std::string& error)
 {
+    // An empty file, a folder or a FIFO would read as "no settings": every field silently back to its
+    // default on SIGHUP. They are refused like any other bad config.
+    struct stat st{};
+    if (::stat(path.c_str(), &st) != 0)
+    {
+        error = path + ": " + std::strerror(errno);
+        return false;
+    }
+    if (!S_ISREG(st.st_mode) || st.st_size == 0)
+    {
+        error = path + (S_ISREG(st.st_mode) ? ": empty file" : ": not a regular file") + " (refused, not taken as defaults)";
+        return false;
+    }
     toml::table table;
     if (!parseTomlFile(path, table, error))
         return false;
+    if (table.empty())
+    {
+        error = path + ": no settings, only blanks and comments (refused, not taken as defaults)";
+        return false;
+    }
     ServiceConfig c = out;
     c.path = path;
     if (const toml::node* node = table.get("service"))
