@@ -91,6 +91,9 @@ struct ControlSocketServer::Connection
     std::deque<PendingLine> out;
     size_t queuedBytes = 0;
     size_t queuedFds = 0;        ///< descriptors in `out`, ours until sent
+    bool admitted = false;       ///< said hello (ControlSocketServer::admit)
+    int64_t connectedMs = 0;     ///< steady clock
+    int64_t lastInputMs = 0;     ///< steady clock, last bytes received
 };
 
 bool ControlSocketServer::listen(const std::string& path, uint32_t mode, const ControlSocketLimits& limits,
@@ -202,6 +205,43 @@ uint32_t ControlSocketServer::peerUid(ClientId client) const
 {
     auto it = clients_.find(client);
     return it == clients_.end() ? UINT32_MAX : it->second->uid;
+}
+
+void ControlSocketServer::admit(ClientId client)
+{
+    auto it = clients_.find(client);
+    if (it != clients_.end())
+        it->second->admitted = true;
+}
+
+int ControlSocketServer::expireUnadmitted()
+{
+    const int64_t now = steadyMs();
+    int64_t next = -1;
+    std::vector<std::pair<ClientId, std::string>> expired;
+    for (auto& [id, c] : clients_)
+    {
+        if (c->admitted || c->dead)
+            continue;
+        const int64_t helloDeadline = c->connectedMs + limits_.helloTimeoutMs;
+        const int64_t idleDeadline = c->lastInputMs + limits_.idleWithoutHelloMs;
+        if (now >= helloDeadline)
+            expired.emplace_back(id, "no hello within " + std::to_string(limits_.helloTimeoutMs) + " ms of connecting");
+        else if (now >= idleDeadline)
+            expired.emplace_back(id, "idle for " + std::to_string(limits_.idleWithoutHelloMs) + " ms without hello");
+        else
+        {
+            const int64_t in = std::min(helloDeadline, idleDeadline) - now;
+            next = next < 0 ? in : std::min(next, in);
+        }
+    }
+    for (const auto& [id, why] : expired)
+    {
+        nlohmann::json j = {{"type", "error"}, {"code", "failed"}, {"message", "timeout: " + why + "; closing"}};
+        send(id, j.dump());
+        disconnect(id);
+    }
+    return int(next);
 }
 
 void ControlSocketServer::disconnect(ClientId client)
@@ -321,6 +361,7 @@ void ControlSocketServer::poll(int timeoutMs, const Handlers& handlers)
             if (n < 0)
                 return;
             budget -= size_t(n);
+            it->second->lastInputMs = steadyMs();
             std::string_view data(buffer, size_t(n));
             while (!data.empty())
             {
@@ -367,6 +408,11 @@ void ControlSocketServer::poll(int timeoutMs, const Handlers& handlers)
 
     // After EMFILE the pending connection keeps the listening socket readable: polling it would spin.
     // It is left out of the poll set until the back-off ends (descriptors may be free again by then).
+    // Slots held by silent connections come back: a client has helloTimeoutMs to say hello.
+    const int nextDeadlineMs = expireUnadmitted();
+    reap();
+    if (nextDeadlineMs >= 0)
+        timeoutMs = timeoutMs < 0 ? nextDeadlineMs : std::min(timeoutMs, nextDeadlineMs);
     const int64_t now = steadyMs();
     const bool accepting = now >= acceptPausedUntilMs_;
     if (!accepting)
@@ -423,13 +469,20 @@ void ControlSocketServer::acceptClients(const Handlers& handlers)
                 acceptPausedUntilMs_ = steadyMs() + limits_.acceptBackoffMs;
             return;  // EAGAIN: all taken; out of resources: back off, then try again
         }
+        ucred cred{};
+        socklen_t len = sizeof cred;
+        const uint32_t uid = ::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) == 0 ? uint32_t(cred.uid) : UINT32_MAX;
+        const auto sameUid = size_t(std::count_if(clients_.begin(), clients_.end(),
+                                                  [uid](const auto& kv) { return kv.second->uid == uid; }));
+        std::string busy;
         if (clients_.size() >= limits_.maxClients)
+            busy = "busy: the service serves at most " + std::to_string(limits_.maxClients) + " clients";
+        else if (limits_.maxClientsPerUid > 0 && sameUid >= limits_.maxClientsPerUid)
+            busy = "busy: uid " + std::to_string(uid) + " already holds its share of " +
+                   std::to_string(limits_.maxClientsPerUid) + " connections";
+        if (!busy.empty())
         {
-            nlohmann::json busy = {{"type", "error"},
-                                   {"code", "failed"},
-                                   {"message", "busy: the service serves at most " + std::to_string(limits_.maxClients) +
-                                                   " clients"}};
-            std::string line = busy.dump() + "\n";
+            std::string line = nlohmann::json({{"type", "error"}, {"code", "failed"}, {"message", busy}}).dump() + "\n";
             ssize_t n = ::send(fd, line.data(), line.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
             (void)n;
             ::close(fd);
@@ -437,9 +490,8 @@ void ControlSocketServer::acceptClients(const Handlers& handlers)
         }
         auto* c = new Connection;
         c->fd = fd;
-        ucred cred{};
-        socklen_t len = sizeof cred;
-        c->uid = ::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) == 0 ? uint32_t(cred.uid) : UINT32_MAX;
+        c->uid = uid;
+        c->connectedMs = c->lastInputMs = steadyMs();
         ClientId id = nextId_++;
         clients_[id] = c;
         if (handlers.connected)

@@ -114,6 +114,7 @@ void ControlLoop::dispatch(ClientId client, const Request& request)
         }
         clients_[client].hello = true;
         clients_[client].name = request.clientName;
+        c_.server->admit(client);  // past the hello and idle timeouts
         c_.server->send(client, replyWithId(request, {{"type", "hello"},
                                                      {"protocol", kProtocolVersion},
                                                      {"service", "skyservice 0.1"},

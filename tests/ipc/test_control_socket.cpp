@@ -65,6 +65,11 @@ struct EchoServer
                 server.send(id, "{\"type\":\"fd\"}", {fd});
                 ::close(fd);  // the server keeps its own dup until it is sent
             }
+            else if (line == "hello")  // as the service does on a good hello
+            {
+                server.admit(id);
+                server.send(id, "welcome");
+            }
             else if (line == "uid")
                 server.send(id, "uid " + std::to_string(server.peerUid(id)));
             else
@@ -407,6 +412,71 @@ TEST(ControlSocket, OutOfDescriptorsOnAcceptBacksOffAndRecovers)
     ASSERT_TRUE(late->sendAll("after\n"));
     ASSERT_EQ(late->readLine(line, 3000), Read::Line);
     EXPECT_EQ(line, "echo after");
+}
+
+}  // namespace
+}  // namespace sky
+
+namespace sky
+{
+namespace
+{
+
+// Before issue 24 connections that never said hello held their slot for ever: 64 of them locked every
+// other client out. Now a connection must say hello within helloTimeoutMs and, until it has, may not
+// stay silent for idleWithoutHelloMs; a client that said hello stays as long as it likes.
+// (Before the fix neither was closed: the test saw no timeout line.)
+TEST(ControlSocket, ConnectionsWithoutHelloTimeOut)
+{
+    test::TempDir dir;
+    EchoServer s;
+    ControlSocketLimits limits;
+    limits.helloTimeoutMs = 1500;
+    limits.idleWithoutHelloMs = 500;
+    ASSERT_TRUE(s.start(dir.file("s.sock"), limits));
+    RawClient silent(dir.file("s.sock")), chatty(dir.file("s.sock")), polite(dir.file("s.sock"));
+    std::string line;
+    ASSERT_TRUE(polite.sendAll("hello\n"));
+    ASSERT_EQ(polite.readLine(line, 3000), Read::Line);
+    EXPECT_EQ(line, "welcome");
+    // The chatty one talks (so it is never idle) but never says hello: it goes at the hello deadline.
+    bool chattyTimedOut = false;
+    for (int i = 0; i < 100 && !chattyTimedOut; ++i)
+    {
+        if (!chatty.sendAll("ping\n"))
+            break;
+        while (!chattyTimedOut && chatty.readLine(line, 100) == Read::Line)
+            chattyTimedOut = line.find("timeout") != std::string::npos;
+    }
+    EXPECT_TRUE(chattyTimedOut);
+    EXPECT_NE(line.find("no hello within 1500 ms"), std::string::npos) << line;
+    // The silent one went at its idle deadline.
+    ASSERT_EQ(silent.readLine(line, 5000), Read::Line);
+    EXPECT_NE(line.find("idle for 500 ms without hello"), std::string::npos) << line;
+    EXPECT_EQ(silent.readLine(line, 5000), Read::Closed);
+    EXPECT_TRUE(waitFor([&] { return s.disconnected.load() == 2; }));
+    ASSERT_TRUE(polite.sendAll("still\n"));
+    ASSERT_EQ(polite.readLine(line, 3000), Read::Line);
+    EXPECT_EQ(line, "echo still");
+}
+
+// One uid may hold only its share of the slots, so one user cannot take them all.
+TEST(ControlSocket, OneUidHoldsOnlyItsShareOfTheSlots)
+{
+    test::TempDir dir;
+    EchoServer s;
+    ControlSocketLimits limits;
+    limits.maxClients = 4;
+    limits.maxClientsPerUid = 2;
+    ASSERT_TRUE(s.start(dir.file("s.sock"), limits));
+    RawClient a(dir.file("s.sock")), b(dir.file("s.sock"));
+    ASSERT_TRUE(waitFor([&] { return s.connected.load() == 2; }));
+    RawClient c(dir.file("s.sock"));
+    std::string line;
+    ASSERT_EQ(c.readLine(line, 3000), Read::Line);
+    EXPECT_NE(line.find("uid " + std::to_string(::getuid()) + " already holds its share of 2"), std::string::npos)
+        << line;
+    EXPECT_EQ(c.readLine(line, 3000), Read::Closed);
 }
 
 }  // namespace
