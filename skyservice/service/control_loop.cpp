@@ -157,11 +157,7 @@ void ControlLoop::dispatch(ClientId client, const Request& request)
             sendError(client, request.id, "missing_field", "write_files needs a prefix", "prefix");
             return;
         }
-        {
-            std::lock_guard<std::mutex> lock(s.mutex);
-            s.jobs.push_back(RenderJob{RenderJob::WriteFiles, client, request.id, request.path});
-        }
-        s.wake.notify_all();
+        queueJob(client, request, RenderJob{RenderJob::WriteFiles, client, request.id, request.path});
         return;  // the render thread replies once the files are written
     }
     }
@@ -256,11 +252,7 @@ void ControlLoop::subscribe(ClientId client, const Request& request)
         return;
     }
     case Transport::Vulkan:
-        {
-            std::lock_guard<std::mutex> lock(s.mutex);
-            s.jobs.push_back(RenderJob{RenderJob::SubscribeVulkan, client, request.id, ""});
-        }
-        s.wake.notify_all();
+        queueJob(client, request, RenderJob{RenderJob::SubscribeVulkan, client, request.id, ""});
         return;
     case Transport::Files:
     {
@@ -271,13 +263,56 @@ void ControlLoop::subscribe(ClientId client, const Request& request)
             return;
         }
         {
+            // Every subscription costs each frame it writes: the same dir again replaces the earlier one,
+            // and a client holds a few at most.
             std::lock_guard<std::mutex> lock(s.mutex);
-            s.files.push_back(FilesSubscription{client, request.path, std::max(request.every, 1u), request.fileFormat});
+            FilesSubscription sub{client, request.path, std::max(request.every, 1u), request.fileFormat};
+            auto same = std::find_if(s.files.begin(), s.files.end(), [&](const FilesSubscription& f) {
+                return f.client == client && f.dir == sub.dir;
+            });
+            if (same != s.files.end())
+                *same = sub;
+            else if (size_t(std::count_if(s.files.begin(), s.files.end(), [&](const FilesSubscription& f) {
+                         return f.client == client;
+                     })) >= c_.maxFilesSubscriptionsPerClient)
+            {
+                sendError(client, request.id, "failed",
+                          "busy: a client holds at most " + std::to_string(c_.maxFilesSubscriptionsPerClient) +
+                              " files subscriptions (the same dir again replaces its subscription)",
+                          "dir");
+                return;
+            }
+            else
+                s.files.push_back(sub);
         }
         c_.server->send(client, okReply(request));
         return;
     }
     }
+}
+
+void ControlLoop::queueJob(ClientId client, const Request& request, RenderJob job)
+{
+    ServiceState& s = *c_.state;
+    size_t queued = 0;
+    {
+        // The render thread takes jobs before frames: one client's pipelined requests must not stall
+        // rendering for everyone.
+        std::lock_guard<std::mutex> lock(s.mutex);
+        queued = size_t(
+            std::count_if(s.jobs.begin(), s.jobs.end(), [client](const RenderJob& j) { return j.client == client; }));
+        if (queued < c_.maxQueuedJobsPerClient)
+            s.jobs.push_back(std::move(job));
+    }
+    if (queued >= c_.maxQueuedJobsPerClient)
+    {
+        sendError(client, request.id, "failed",
+                  "busy: " + std::to_string(queued) +
+                      " of this client's write_files / subscribe vulkan requests are still queued; wait for their "
+                      "replies");
+        return;
+    }
+    s.wake.notify_all();
 }
 
 nlohmann::json ControlLoop::statusJson()

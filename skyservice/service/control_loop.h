@@ -24,6 +24,8 @@ struct ControlContext
     WeatherLoader* loader = nullptr;
     const ShmRingWriter* ring = nullptr;
     ProtocolLimits limits;
+    uint32_t maxQueuedJobsPerClient = 8;          ///< write_files + subscribe vulkan waiting for the render thread
+    uint32_t maxFilesSubscriptionsPerClient = 4;  ///< distinct dirs; the same dir again replaces its subscription
     std::string deviceName, driver;
     SteadyClock::time_point startedAt = SteadyClock::now();
 };
@@ -54,6 +56,8 @@ private:
     void setView(ClientId client, const Request& request);
     void setTime(ClientId client, const Request& request);
     void subscribe(ClientId client, const Request& request);
+    /// Queues a render-thread job unless the client already has maxQueuedJobsPerClient waiting (then busy).
+    void queueJob(ClientId client, const Request& request, RenderJob job);
 
     ControlContext c_;
     std::unordered_map<ClientId, Client> clients_;

@@ -112,3 +112,53 @@ TEST(ServiceHostile, FifoNeverWedgesTheWeatherLoader)
     ASSERT_TRUE(waitForStatus(c, [&](const json& j) { return j["weather"]["source"] == good; }, 10000, &s)) << s;
     EXPECT_EQ(d.stop(), 0) << readFile(d.logPath);
 }
+
+// Before issue 24 a client could queue any number of write_files (the render thread takes jobs before
+// frames: 200 stalled rendering for 1.7 s) and any number of files subscriptions (each one costs every
+// frame). Now a client has at most 8 jobs queued and 4 files subscriptions (the same dir again replaces
+// its subscription); the rest are answered busy, and SIGTERM with jobs queued still exits cleanly.
+TEST(ServiceHostile, PerClientWorkIsBounded)
+{
+    TempDir tmp;
+    Daemon d;
+    std::string error;
+    ASSERT_TRUE(d.start(tmp.path, tinyFrames(), error)) << error;
+    RawClient c;
+    ASSERT_TRUE(c.open(d.socketPath));
+    json r = c.request({{"type", "render"}});
+    ASSERT_EQ(r.value("type", ""), "ok") << r;
+    std::string flood;
+    for (int i = 0; i < 100; ++i)
+        flood += json({{"type", "write_files"}, {"id", i}, {"prefix", tmp.path + "/f" + std::to_string(i)}}).dump() + "\n";
+    ASSERT_TRUE(c.sendRaw(flood));
+    int ok = 0, busy = 0;
+    for (int i = 0; i < 100; ++i)
+    {
+        auto line = c.readLine(20000);
+        ASSERT_TRUE(line) << "reply " << i;
+        json e = json::parse(*line, nullptr, false);
+        if (e.value("type", "") == "ok")
+            ++ok;
+        else if (e.value("message", "").find("busy") != std::string::npos)
+            ++busy;
+    }
+    EXPECT_GT(busy, 0) << ok << " written";
+    EXPECT_EQ(ok + busy, 100);
+
+    for (int i = 0; i < 3; ++i)  // the same dir three times: one subscription
+    {
+        r = c.request({{"type", "subscribe"}, {"transport", "files"}, {"dir", tmp.path}, {"every", 1000}});
+        EXPECT_EQ(r.value("type", ""), "ok") << r;
+    }
+    for (int i = 0; i < 4; ++i)
+    {
+        const std::string dir = tmp.path + "/d" + std::to_string(i);
+        std::filesystem::create_directory(dir);
+        r = c.request({{"type", "subscribe"}, {"transport", "files"}, {"dir", dir}, {"every", 1000}});
+        EXPECT_EQ(r.value("type", ""), i < 3 ? "ok" : "error") << i << " " << r;
+    }
+    EXPECT_NE(r.value("message", "").find("busy"), std::string::npos) << r;
+
+    ASSERT_TRUE(c.sendRaw(flood));  // queued jobs when SIGTERM comes: dropped, the exit is clean
+    EXPECT_EQ(d.stop(), 0) << readFile(d.logPath);
+}
