@@ -157,6 +157,14 @@ void ControlLoop::dispatch(ClientId client, const Request& request)
             sendError(client, request.id, "missing_field", "write_files needs a prefix", "prefix");
             return;
         }
+        std::string why;
+        if (!FilesRoot::checkName(request.path, "prefix", why))
+        {
+            sendError(client, request.id, "out_of_range", why, "prefix");
+            return;
+        }
+        SKY_LOG_INFO("write_files %s (client %llu, uid %u)", request.path.c_str(), (unsigned long long)client,
+                     c_.server->peerUid(client));
         queueJob(client, request, RenderJob{RenderJob::WriteFiles, client, request.id, request.path});
         return;  // the render thread replies once the files are written
     }
@@ -256,10 +264,18 @@ void ControlLoop::subscribe(ClientId client, const Request& request)
         return;
     case Transport::Files:
     {
-        std::error_code ec;
-        if (request.path.empty() || !std::filesystem::is_directory(request.path, ec))
+        SKY_LOG_INFO("subscribe files %s (client %llu, uid %u)", request.path.c_str(), (unsigned long long)client,
+                     c_.server->peerUid(client));
+        FilesFolder folder;
+        std::string why;
+        if (!FilesRoot::checkName(request.path, "dir", why))
         {
-            sendError(client, request.id, "failed", "dir '" + request.path + "' is not a folder", "dir");
+            sendError(client, request.id, "out_of_range", why, "dir");
+            return;
+        }
+        if (!c_.filesRoot || !c_.filesRoot->openFolder(request.path, folder, why))
+        {
+            sendError(client, request.id, "failed", c_.filesRoot ? why : "the service writes no files", "dir");
             return;
         }
         {
@@ -285,7 +301,7 @@ void ControlLoop::subscribe(ClientId client, const Request& request)
             else
                 s.files.push_back(sub);
         }
-        c_.server->send(client, okReply(request));
+        c_.server->send(client, okReply(request, {{"dir", folder.shown}}));  // where the files appear
         return;
     }
     }

@@ -8,6 +8,7 @@
 #include "skyservice/ipc/control_socket.h"
 #include "skyservice/ipc/protocol.h"
 #include "skyservice/ipc/shm_ring.h"
+#include "skyservice/service/files_root.h"
 #include "skyservice/service/service_state.h"
 #include "skyservice/service/weather_loader.h"
 
@@ -23,6 +24,7 @@ struct ControlContext
     ServiceState* state = nullptr;
     WeatherLoader* loader = nullptr;
     const ShmRingWriter* ring = nullptr;
+    const FilesRoot* filesRoot = nullptr;
     ProtocolLimits limits;
     uint32_t maxQueuedJobsPerClient = 8;          ///< write_files + subscribe vulkan waiting for the render thread
     uint32_t maxFilesSubscriptionsPerClient = 4;  ///< distinct dirs; the same dir again replaces its subscription

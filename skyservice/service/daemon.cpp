@@ -5,6 +5,7 @@
 #include "skyservice/ipc/shm_ring.h"
 #include "skyservice/render/renderer.h"
 #include "skyservice/service/control_loop.h"
+#include "skyservice/service/files_root.h"
 #include "skyservice/service/log.h"
 #include "skyservice/service/render_loop.h"
 #include "skyservice/service/service_config.h"
@@ -45,6 +46,7 @@ private:
     ServiceState state_;
     Renderer renderer_;
     ShmRingWriter ring_;
+    FilesRoot filesRoot_;
     ControlSocketServer server_;
     WeatherLoader loader_;
     WeatherWatcher watcher_;
@@ -74,6 +76,8 @@ bool Daemon::readConfig(ServiceConfig& out, std::string& error) const
         out.socketPath = defaultSocketPath();
     if (out.shmName.empty())
         out.shmName = defaultShmName();
+    if (out.filesRoot.empty())
+        out.filesRoot = defaultFilesRoot();
     return checkServiceConfig(out, options_.config.empty() ? "command line" : options_.config, error);
 }
 
@@ -133,6 +137,7 @@ void Daemon::reload()
     keep(fresh.shmSlots != config_.shmSlots, "shm_slots");
     keep(fresh.shadowMapSize != config_.shadowMapSize, "shadow_map_size");
     keep(fresh.device != config_.device || fresh.validate != config_.validate, "device/validate");
+    keep(fresh.filesRoot != config_.filesRoot, "files_root");
     fresh.socketPath = config_.socketPath;
     fresh.socketMode = config_.socketMode;
     fresh.shmName = config_.shmName;
@@ -142,6 +147,7 @@ void Daemon::reload()
     fresh.shadowMapSize = config_.shadowMapSize;
     fresh.device = config_.device;
     fresh.validate = config_.validate;
+    fresh.filesRoot = config_.filesRoot;
 
     setLogLevel(fresh.logLevel);
     {
@@ -228,6 +234,10 @@ int Daemon::run()
         SKY_LOG_ERROR("shared memory: %s", error.c_str());
         return shutdown(kExitFailure);
     }
+    if (filesRoot_.open(config_.filesRoot, error))
+        SKY_LOG_INFO("files are written beneath %s", filesRoot_.path().c_str());
+    else
+        SKY_LOG_ERROR("%s (no files are written)", error.c_str());
     ControlSocketLimits limits;
     if (!server_.listen(config_.socketPath, config_.socketMode, limits, error))
     {
@@ -252,6 +262,7 @@ int Daemon::run()
     cc.state = &state_;
     cc.loader = &loader_;
     cc.ring = &ring_;
+    cc.filesRoot = &filesRoot_;
     cc.limits.maxWidth = config_.maxWidth;
     cc.limits.maxHeight = config_.maxHeight;
     cc.deviceName = renderer_.ctx.deviceName;
@@ -262,6 +273,7 @@ int Daemon::run()
     RenderLoop::Setup setup;
     setup.renderer = &renderer_;
     setup.ring = &ring_;
+    setup.filesRoot = &filesRoot_;
     setup.state = &state_;
     setup.repliesReady = [this] { server_.wake(); };
     setup.exportSlots = config_.shmSlots;

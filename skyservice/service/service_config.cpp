@@ -3,6 +3,7 @@
 
 #include "skyservice/app/commands.h"
 #include "skyservice/app/toml_file.h"
+#include "skyservice/service/files_root.h"
 #include "skyservice/sky/ephemeris.h"
 
 #include <cerrno>
@@ -136,6 +137,7 @@ std::map<std::string, FieldReader> serviceFields()
     f["shadow_map_extent_m"] = realField(&ServiceConfig::shadowMapExtentM, 100, 1600000);
     f["files_every"] = u32Field(&ServiceConfig::filesEvery, 0, 1000000);
     f["files_dir"] = stringField(&ServiceConfig::filesDir);
+    f["files_root"] = stringField(&ServiceConfig::filesRoot);
     f["files_format"] = stringField(&ServiceConfig::filesFormat, {"png", "exr", "both"});
     f["log_level"] = [](const toml::node& n, ServiceConfig& c, std::string& why) {
         std::optional<std::string> v = n.value<std::string>();
@@ -318,6 +320,11 @@ bool checkServiceConfig(const ServiceConfig& c, const std::string& where, std::s
         return fail("service.view.height", "= " + std::to_string(c.view.height) + " exceeds service.max_height");
     if (c.filesEvery > 0 && c.filesDir.empty())
         return fail("service.files_dir", "is required when service.files_every > 0");
+    std::string why;
+    if (c.filesEvery > 0 && !FilesRoot::checkName(c.filesDir, "is relative to service.files_root:", why))
+        return fail("service.files_dir", why);
+    if (!c.filesRoot.empty() && c.filesRoot[0] != '/')
+        return fail("service.files_root", "must be an absolute path");
     if (c.socketPath.empty())
         return fail("service.socket_path", "is empty");
     if (c.shadowMapSize > 0 && c.shadowMapSize < 8)

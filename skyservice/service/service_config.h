@@ -28,7 +28,8 @@ struct ServiceConfig
     uint32_t shadowMapSize = 0;     ///< shadow map texels per side with every frame; 0 = none
     double shadowMapExtentM = 150000;///< its edge length on the ground (m)
     uint32_t filesEvery = 0;        ///< write files every N frames (0 = never)
-    std::string filesDir;           ///< where (required when filesEvery > 0)
+    std::string filesDir;           ///< where, relative to filesRoot (required when filesEvery > 0)
+    std::string filesRoot;          ///< every file the daemon writes goes beneath it; default: defaultFilesRoot()
     std::string filesFormat = "png";///< png | exr | both
     LogLevel logLevel = LogLevel::Info;
     std::string device;             ///< Vulkan device: index or name part ("" = best)

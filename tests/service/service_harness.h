@@ -58,6 +58,7 @@ public:
 
     pid_t pid = -1;
     std::string socketPath, shmName, configPath, logPath, dir;
+    std::string filesRoot() const { return dir + "/frames"; }  ///< the config's files_root
 
 private:
     bool launch(std::string& error);

@@ -129,7 +129,7 @@ TEST(ServiceHostile, PerClientWorkIsBounded)
     ASSERT_EQ(r.value("type", ""), "ok") << r;
     std::string flood;
     for (int i = 0; i < 100; ++i)
-        flood += json({{"type", "write_files"}, {"id", i}, {"prefix", tmp.path + "/f" + std::to_string(i)}}).dump() + "\n";
+        flood += json({{"type", "write_files"}, {"id", i}, {"prefix", "f" + std::to_string(i)}}).dump() + "\n";
     ASSERT_TRUE(c.sendRaw(flood));
     int ok = 0, busy = 0;
     for (int i = 0; i < 100; ++i)
@@ -145,20 +145,68 @@ TEST(ServiceHostile, PerClientWorkIsBounded)
     EXPECT_GT(busy, 0) << ok << " written";
     EXPECT_EQ(ok + busy, 100);
 
+    for (int i = 0; i < 5; ++i)
+        std::filesystem::create_directory(d.filesRoot() + "/d" + std::to_string(i));
     for (int i = 0; i < 3; ++i)  // the same dir three times: one subscription
     {
-        r = c.request({{"type", "subscribe"}, {"transport", "files"}, {"dir", tmp.path}, {"every", 1000}});
+        r = c.request({{"type", "subscribe"}, {"transport", "files"}, {"dir", "d4"}, {"every", 1000}});
         EXPECT_EQ(r.value("type", ""), "ok") << r;
     }
     for (int i = 0; i < 4; ++i)
     {
-        const std::string dir = tmp.path + "/d" + std::to_string(i);
-        std::filesystem::create_directory(dir);
-        r = c.request({{"type", "subscribe"}, {"transport", "files"}, {"dir", dir}, {"every", 1000}});
+        r = c.request({{"type", "subscribe"}, {"transport", "files"}, {"dir", "d" + std::to_string(i)}, {"every", 1000}});
         EXPECT_EQ(r.value("type", ""), i < 3 ? "ok" : "error") << i << " " << r;
     }
     EXPECT_NE(r.value("message", "").find("busy"), std::string::npos) << r;
 
     ASSERT_TRUE(c.sendRaw(flood));  // queued jobs when SIGTERM comes: dropped, the exit is clean
     EXPECT_EQ(d.stop(), 0) << readFile(d.logPath);
+}
+
+// Before issue 24 write_files wrote wherever the prefix pointed (absolute, "..", through links) and
+// replaced any file the daemon's user could write. Now every name is relative to files_root, resolved
+// beneath it without following links, a file the daemon did not write is never replaced, and each file
+// request is logged with the peer's uid.
+TEST(ServiceHostile, FileOutputStaysBeneathFilesRoot)
+{
+    TempDir tmp;
+    Daemon d;
+    std::string error;
+    ASSERT_TRUE(d.start(tmp.path, tinyFrames(), error)) << error;
+    RawClient c;
+    ASSERT_TRUE(c.open(d.socketPath));
+    ASSERT_EQ(c.request({{"type", "render"}}).value("type", ""), "ok");
+    const std::string outside = tmp.path + "/outside";
+    std::filesystem::create_directory(outside);
+    ASSERT_EQ(::symlink(outside.c_str(), (d.filesRoot() + "/link").c_str()), 0);
+    std::ofstream(d.filesRoot() + "/victim.json") << "keep";
+    auto writeFiles = [&](const std::string& prefix) {
+        return c.request({{"type", "write_files"}, {"prefix", prefix}}, 20000);
+    };
+    for (const std::string& bad : {outside + "/abs", std::string("../outside/up"), std::string("a/../../up")})
+    {
+        json r = writeFiles(bad);
+        EXPECT_EQ(r.value("code", ""), "out_of_range") << bad << " -> " << r;
+        EXPECT_EQ(r.value("field", ""), "prefix") << r;
+    }
+    json r = writeFiles("link/through");
+    EXPECT_EQ(r.value("type", ""), "error") << r;
+    EXPECT_NE(r.value("message", "").find("not a folder"), std::string::npos) << r;
+    EXPECT_TRUE(std::filesystem::is_empty(outside)) << "a file was written outside files_root";
+    r = writeFiles("victim");
+    EXPECT_EQ(r.value("type", ""), "error") << r;
+    EXPECT_NE(r.value("message", "").find("not written by this service"), std::string::npos) << r;
+    EXPECT_EQ(readFile(d.filesRoot() + "/victim.json"), "keep");
+    // Its own files it writes, and may write again.
+    r = writeFiles("mine");
+    EXPECT_EQ(r.value("type", ""), "ok") << r;
+    r = writeFiles("mine");
+    EXPECT_EQ(r.value("type", ""), "ok") << r;
+    EXPECT_TRUE(std::filesystem::is_regular_file(d.filesRoot() + "/mine.png"));
+    r = c.request({{"type", "subscribe"}, {"transport", "files"}, {"dir", "link"}, {"every", 1}});
+    EXPECT_EQ(r.value("type", ""), "error") << r;
+    EXPECT_EQ(d.stop(), 0);
+    EXPECT_NE(readFile(d.logPath).find("write_files mine (client 2, uid " + std::to_string(::getuid()) + ")"),
+              std::string::npos)
+        << readFile(d.logPath);
 }
