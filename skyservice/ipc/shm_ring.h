@@ -14,7 +14,7 @@ namespace sky
 
 struct ShmRingConfig
 {
-    std::string name;           ///< shm_open name, "/skyservice-<uid>-<pid>" style (leading slash, no other)
+    std::string name;           ///< shm_open name, "/skyservice-<uid>-<hash>" style (leading slash, no other)
     uint32_t slotCount = 3;     ///< >= 2
     uint32_t maxWidth = 1920;   ///< largest frame (pixels)
     uint32_t maxHeight = 1080;

@@ -75,7 +75,7 @@ bool Daemon::readConfig(ServiceConfig& out, std::string& error) const
     if (out.socketPath.empty())
         out.socketPath = defaultSocketPath();
     if (out.shmName.empty())
-        out.shmName = defaultShmName();
+        out.shmName = defaultShmName(out.socketPath);
     if (out.filesRoot.empty())
         out.filesRoot = defaultFilesRoot();
     return checkServiceConfig(out, options_.config.empty() ? "command line" : options_.config, error);

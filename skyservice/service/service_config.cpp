@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <map>
@@ -225,7 +226,17 @@ std::string defaultSocketPath()
     return "/tmp/skyservice-" + std::to_string(getuid()) + ".sock";
 }
 
-std::string defaultShmName() { return "/skyservice-" + std::to_string(getuid()) + "-" + std::to_string(getpid()); }
+std::string defaultShmName(const std::string& socketPath)
+{
+    // FNV-1a of the socket path: stable across restarts (a restarted daemon finds, and replaces, the
+    // ring a killed one left), distinct for two daemons of one user on different sockets.
+    uint64_t hash = 14695981039346656037ull;
+    for (const char c : socketPath)
+        hash = (hash ^ uint8_t(c)) * 1099511628211ull;
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)hash);
+    return "/skyservice-" + std::to_string(getuid()) + "-" + hex;
+}
 
 ServiceConfig defaultServiceConfig()
 {

@@ -210,3 +210,31 @@ TEST(ServiceHostile, FileOutputStaysBeneathFilesRoot)
               std::string::npos)
         << readFile(d.logPath);
 }
+
+// Before issue 24 the default ring name carried the daemon's pid: a killed daemon's ring (25 MB at
+// 1080p) stayed in /dev/shm for good, as a restart made a new one. The name now follows the socket, so
+// the restarted daemon finds the stale ring (its writer is gone), replaces it, and removes it on exit.
+TEST(ServiceHostile, KilledDaemonsRingIsReclaimedByTheRestart)
+{
+    TempDir tmp;
+    Daemon d;
+    std::string error;
+    DaemonConfig cfg = tinyFrames();
+    cfg.defaultShmName = true;
+    ASSERT_TRUE(d.start(tmp.path, cfg, error)) << error;
+    auto ringName = [&] {
+        RawClient c;
+        if (!c.open(d.socketPath))
+            return std::string();
+        return c.request({{"type", "subscribe"}, {"transport", "shm"}}).value("shm_name", std::string());
+    };
+    const std::string first = ringName();
+    ASSERT_FALSE(first.empty());
+    EXPECT_EQ(first.find(std::to_string(d.pid)), std::string::npos) << first;
+    d.stop(SIGKILL);
+    ASSERT_TRUE(std::filesystem::exists("/dev/shm" + first)) << "a killed daemon leaves its ring";
+    ASSERT_TRUE(d.restart(error)) << error;
+    EXPECT_EQ(ringName(), first);
+    EXPECT_EQ(d.stop(), 0) << readFile(d.logPath);
+    EXPECT_FALSE(std::filesystem::exists("/dev/shm" + first)) << first << " leaked";
+}
