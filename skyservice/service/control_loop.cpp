@@ -148,8 +148,18 @@ void ControlLoop::dispatch(ClientId client, const Request& request)
         return;
     }
     case RequestType::Status:
-        c_.server->send(client, replyWithId(request, statusJson()));
+    {
+        nlohmann::json status = statusJson();
+        // Why a file was refused (missing, not a file, bad magic...) tells whether a path exists and
+        // what it is: only the daemon's own user learns that; others are told "cannot load".
+        if (c_.server->peerUid(client) != uint32_t(::geteuid()) && status["weather"]["last_error"].is_string())
+        {
+            std::lock_guard<std::mutex> lock(s.mutex);
+            status["weather"]["last_error"] = s.weather.lastErrorPath + ": cannot load";
+        }
+        c_.server->send(client, replyWithId(request, status));
         return;
+    }
     case RequestType::WriteFiles:
     {
         if (request.path.empty())

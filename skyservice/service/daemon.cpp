@@ -99,6 +99,7 @@ void Daemon::onWeather(const std::string& path, std::shared_ptr<const WeatherTim
     if (!timeline)
     {
         state_.weather.lastError = error;
+        state_.weather.lastErrorPath = path;
         SKY_LOG_WARN("weather %s refused: %s (keeping %s)", path.c_str(), error.c_str(), state_.weather.source.c_str());
         return;
     }

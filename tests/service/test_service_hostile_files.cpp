@@ -12,7 +12,9 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
 
@@ -237,4 +239,79 @@ TEST(ServiceHostile, KilledDaemonsRingIsReclaimedByTheRestart)
     EXPECT_EQ(ringName(), first);
     EXPECT_EQ(d.stop(), 0) << readFile(d.logPath);
     EXPECT_FALSE(std::filesystem::exists("/dev/shm" + first)) << first << " leaked";
+}
+
+// Before issue 24 a newline in a load_weather path or a client name went into the log as it was, so a
+// client could write lines that looked like the service's own. Control characters are escaped now.
+TEST(ServiceHostile, ClientTextCannotForgeLogLines)
+{
+    TempDir tmp;
+    Daemon d;
+    std::string error;
+    ASSERT_TRUE(d.start(tmp.path, tinyFrames(), error)) << error;
+    RawClient c;
+    ASSERT_TRUE(c.connect(d.socketPath));
+    json r = c.request({{"type", "hello"}, {"protocol", 1}, {"client", "ig\n2026-06-21T12:00:00.000Z error FORGED-NAME"}});
+    ASSERT_EQ(r.value("type", ""), "hello") << r;
+    r = c.request({{"type", "load_weather"}, {"path", "/nowhere.skywx\n2026-06-21T12:00:00.000Z error FORGED-PATH"}});
+    ASSERT_EQ(r.value("type", ""), "ok") << r;
+    json s;
+    ASSERT_TRUE(waitForStatus(c, [](const json& j) { return j["weather"]["last_error"].is_string(); }, 10000, &s)) << s;
+    c.close();
+    EXPECT_EQ(d.stop(), 0);
+    std::istringstream log(readFile(d.logPath));
+    bool escaped = false;
+    for (std::string line; std::getline(log, line);)
+    {
+        EXPECT_NE(line.rfind("2026-06-21T12:00:00.000Z error FORGED", 0), 0u) << "forged line: " << line;
+        escaped = escaped || line.find("\\x0a2026-06-21T12:00:00.000Z error FORGED-PATH") != std::string::npos;
+    }
+    EXPECT_TRUE(escaped) << readFile(d.logPath);
+}
+
+// Why a file was refused tells whether a path exists and what it is: a client of another uid (on a
+// socket_mode 0o666 service) is told only "cannot load". Needs root to act as another user.
+TEST(ServiceHostile, OtherUsersLearnNothingAboutPaths)
+{
+    if (::geteuid() != 0)
+        GTEST_SKIP() << "needs root to connect as another uid";
+    TempDir tmp;
+    ::chmod(tmp.path.c_str(), 0755);
+    Daemon d;
+    std::string error;
+    DaemonConfig cfg = tinyFrames();
+    cfg.extraService = "socket_mode = 0o666";
+    ASSERT_TRUE(d.start(tmp.path, cfg, error)) << error;
+    RawClient own;
+    ASSERT_TRUE(own.open(d.socketPath));
+    ASSERT_EQ(own.request({{"type", "load_weather"}, {"path", "/root/no-such.skywx"}}).value("type", ""), "ok");
+    json s;
+    ASSERT_TRUE(waitForStatus(own, [](const json& j) { return j["weather"]["last_error"].is_string(); }, 10000, &s));
+    EXPECT_NE(s["weather"]["last_error"].get<std::string>().find("No such file"), std::string::npos) << s;
+    int pipeFds[2];
+    ASSERT_EQ(::pipe(pipeFds), 0);
+    const pid_t child = ::fork();
+    if (child == 0)
+    {
+        ::close(pipeFds[0]);
+        std::string seen = "no connection";
+        if (::setgid(65534) == 0 && ::setuid(65534) == 0)
+        {
+            RawClient other;
+            if (other.open(d.socketPath))
+                seen = other.request({{"type", "status"}})["weather"]["last_error"].dump();
+        }
+        ssize_t n = ::write(pipeFds[1], seen.data(), seen.size());
+        ::_exit(n == ssize_t(seen.size()) ? 0 : 1);
+    }
+    ::close(pipeFds[1]);
+    std::string seen;
+    char buffer[512];
+    for (ssize_t n; (n = ::read(pipeFds[0], buffer, sizeof buffer)) > 0;)
+        seen.append(buffer, size_t(n));
+    ::close(pipeFds[0]);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    EXPECT_EQ(seen, "\"/root/no-such.skywx: cannot load\"");
+    EXPECT_EQ(d.stop(), 0);
 }
