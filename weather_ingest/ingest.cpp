@@ -106,6 +106,54 @@ WeatherSnapshot mapTime(const std::vector<const GribRecord*>& records, const Map
     return compositeSnapshots(std::move(parts), kMaxCompositeCells, warnings);
 }
 
+/// MappingOptions' amplification guard: decoded and written bytes against the input's size.
+class AmplificationGuard
+{
+public:
+    AmplificationGuard(const MappingOptions& o, uint64_t inputBytes)
+        : off_(o.allowLargeOutput), inputBytes_(inputBytes),
+          budgetBytes_(std::max(double(o.amplificationFloorBytes), o.maxAmplification * double(inputBytes)))
+    {
+    }
+    /// The most cells one message may decode to, given what is decoded already.
+    size_t maxCells(uint64_t decodedBytes) const
+    {
+        if (off_)
+            return kMaxSnapshotCells;
+        const double leftBytes = std::max(0.0, budgetBytes_ - double(decodedBytes));
+        return size_t(std::clamp(leftBytes / sizeof(float), 1.0, double(kMaxSnapshotCells)));
+    }
+    void check(uint64_t bytes, const std::string& what, const std::string& path) const
+    {
+        if (off_ || double(bytes) <= budgetBytes_)
+            return;
+        throw IngestError(IngestErrorKind::TooLarge, path, "", "",
+                          what + " " + std::to_string(bytes) + " bytes from " + std::to_string(inputBytes_) +
+                              " bytes of input, over the limit of " + std::to_string(uint64_t(budgetBytes_)) +
+                              " bytes; pass --allow-large-output if that is expected");
+    }
+
+private:
+    bool off_;
+    uint64_t inputBytes_;
+    double budgetBytes_;
+};
+
+uint64_t payloadBytes(const WeatherSnapshot& s)
+{
+    uint64_t n = s.capeJKg.size() + s.tropopauseAltitudeM.size() + s.dataWeight.size() + s.high.coverage.size() +
+                 s.high.altitudeM.size() + s.high.windEastMS.size() + s.high.windNorthMS.size();
+    n *= sizeof(float);
+    n += s.high.type.size();
+    for (const CloudLayerFields& l : s.layers)
+        n += sizeof(float) * (l.coverage.size() + l.baseAltitudeM.size() + l.topAltitudeM.size() +
+                              l.precipitationMmH.size() + l.windEastMS.size() + l.windNorthMS.size()) +
+             l.type.size();
+    for (const PressureLevelField& f : s.levelFields)
+        n += sizeof(float) * f.values.size();
+    return n;
+}
+
 }  // namespace
 
 InputFormat detectFormat(const std::string& path)
@@ -134,6 +182,15 @@ ConvertResult convertFiles(const std::vector<std::string>& paths, const MappingO
                            const ProgressFn& progress)
 {
     ConvertResult result;
+    uint64_t inputBytes = 0;
+    for (const std::string& path : paths)
+    {
+        std::error_code ec;
+        const uintmax_t bytes = std::filesystem::file_size(path, ec);
+        inputBytes += ec ? 0 : uint64_t(bytes);
+    }
+    const AmplificationGuard guard(options, inputBytes);
+    uint64_t decodedBytes = 0, outputBytes = 0;
     std::deque<std::vector<GribRecord>> gribFiles;  // deque: pointers into it stay valid
     GribGridCache grids;
     const double perFile = 0.9 / double(std::max<size_t>(paths.size(), 1));
@@ -148,14 +205,33 @@ ConvertResult convertFiles(const std::vector<std::string>& paths, const MappingO
         if (detectFormat(path) == InputFormat::Grib)
         {
             GribFile file(path);
-            gribFiles.push_back(readGribRecords(file, kMaxSnapshotCells, fileProgress, grids));
+            // One message is at most kMaxSnapshotCells values; the sum over messages is guarded here.
+            try
+            {
+                gribFiles.push_back(readGribRecords(file, guard.maxCells(decodedBytes), fileProgress, grids));
+            }
+            catch (const IngestError& e)
+            {
+                if (e.kind() != IngestErrorKind::TooLarge || options.allowLargeOutput)
+                    throw;
+                throw IngestError(IngestErrorKind::TooLarge, path, "", "",
+                                  std::string(e.what()) + " (decoding is limited by the input's size; pass "
+                                                          "--allow-large-output if that is expected)");
+            }
+            for (const GribRecord& r : gribFiles.back())
+                decodedBytes += r.field.values.size() * sizeof(float);
+            guard.check(decodedBytes, "decoding " + path + " takes", path);
         }
         else
         {
             const NcFile file(path);
             std::vector<WeatherSnapshot> s = mapWrfFile(file, options, result.warnings, fileProgress);
             for (WeatherSnapshot& w : s)
+            {
+                outputBytes += payloadBytes(w);
                 result.snapshots.push_back(std::move(w));
+            }
+            guard.check(outputBytes, "the snapshot file would take", path);
         }
     }
     std::map<int64_t, std::vector<const GribRecord*>> byTime;
@@ -168,6 +244,8 @@ ConvertResult convertFiles(const std::vector<std::string>& paths, const MappingO
         if (progress)
             progress(0.9 + 0.1 * double(done++) / double(byTime.size()), "mapping " + isoTime(time));
         result.snapshots.push_back(mapTime(records, options, result.warnings));
+        outputBytes += payloadBytes(result.snapshots.back());
+        guard.check(outputBytes, "the snapshot file would take", paths.front());
     }
     std::stable_sort(result.snapshots.begin(), result.snapshots.end(),
                      [](const WeatherSnapshot& a, const WeatherSnapshot& b) { return a.validTimeUnixS < b.validTimeUnixS; });

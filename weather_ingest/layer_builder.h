@@ -20,6 +20,12 @@ struct MappingOptions
     bool lenient = false;
     /// Keep the optional 3D fields (cloud mixing ratio, cloud cover on levels) as levelFields.
     bool keepLevelFields = false;
+    /// Amplification guard: the decoded fields, and the snapshot to write, may each take at most
+    /// max(amplificationFloorBytes, maxAmplification x the input files' bytes). A few hundred bytes of
+    /// GRIB2 can declare a constant 8192 x 8192 field: without the guard that is gigabytes of output.
+    uint64_t amplificationFloorBytes = 64ull << 20;
+    double maxAmplification = 100;
+    bool allowLargeOutput = false;  ///< sky-ingest --allow-large-output: no guard
 };
 
 /// Snapshot layer indices (README "Snapshot layers").

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -28,6 +29,7 @@ constexpr uint8_t kMagic[8] = {0x89, 'S', 'K', 'Y', 'W', 'X', '\r', '\n'};
 constexpr size_t kHeaderBytes = 32;
 constexpr uint32_t kMaxMetadataBytes = 16u * 1024u * 1024u;  // provenance is text; 16 MB is generous
 constexpr uint8_t kMaxCloudType = static_cast<uint8_t>(CloudType::Stratus);
+constexpr uint64_t kSparseSlackBytes = 16u << 20;  // files below this are never refused as sparse
 
 /// One array of a snapshot as the file lists it: exactly one of f32/u8 is set.
 struct ArrayRef
@@ -204,8 +206,16 @@ uint32_t versionFor(const std::vector<WeatherSnapshot>& snapshots)
     return kSnapshotFormatOldestVersion;
 }
 
-bool parseSnapshots(const uint8_t* mem, std::FILE* file, uint64_t totalBytes, const uint8_t* header,
-                    const std::string& name, std::vector<WeatherSnapshot>& out, std::string& error)
+struct Header
+{
+    uint32_t version = 0;
+    uint32_t count = 0;
+    uint64_t payloadBytes = 0;
+    uint32_t payloadCrc = 0;
+};
+
+/// Checks the 32-byte header against the file's real length (totalBytes).
+bool parseHeader(const uint8_t* header, uint64_t totalBytes, const std::string& name, Header& h, std::string& error)
 {
     if (totalBytes < kHeaderBytes || std::memcmp(header, kMagic, 8) != 0)
     {
@@ -215,25 +225,50 @@ bool parseSnapshots(const uint8_t* mem, std::FILE* file, uint64_t totalBytes, co
             return fail(error, name, "not a weather snapshot file (bad magic; expected '\\x89SKYWX\\r\\n')");
         return fail(error, name, "truncated header (" + std::to_string(totalBytes) + " of 32 bytes)");
     }
-    const uint32_t version = loadLe<uint32_t>(header + 8);
-    const uint32_t count = loadLe<uint32_t>(header + 12);
-    const uint64_t payloadBytes = loadLe<uint64_t>(header + 16);
-    const uint32_t payloadCrc = loadLe<uint32_t>(header + 24);
+    h.version = loadLe<uint32_t>(header + 8);
+    h.count = loadLe<uint32_t>(header + 12);
+    h.payloadBytes = loadLe<uint64_t>(header + 16);
+    h.payloadCrc = loadLe<uint32_t>(header + 24);
     if (crc32c(header, 28) != loadLe<uint32_t>(header + 28))
         return fail(error, name, "header checksum mismatch (corrupted file)");
-    if (version < kSnapshotFormatOldestVersion || version > kSnapshotFormatVersion)
+    if (h.version < kSnapshotFormatOldestVersion || h.version > kSnapshotFormatVersion)
         return fail(error, name,
-                    "format version " + std::to_string(version) + " is not supported (this build reads " +
+                    "format version " + std::to_string(h.version) + " is not supported (this build reads " +
                         std::to_string(kSnapshotFormatOldestVersion) + " to " + std::to_string(kSnapshotFormatVersion) +
                         ")");
-    if (payloadBytes != totalBytes - kHeaderBytes)
+    if (h.payloadBytes != totalBytes - kHeaderBytes)
         return fail(error, name,
-                    (payloadBytes > totalBytes - kHeaderBytes ? "truncated: header says " : "trailing data: header says ") +
-                        std::to_string(payloadBytes + kHeaderBytes) + " bytes, file has " + std::to_string(totalBytes));
-    if (count == 0 || count > kMaxSnapshotsPerFile)
-        return fail(error, name, "bad snapshot count " + std::to_string(count));
+                    (h.payloadBytes > totalBytes - kHeaderBytes ? "truncated: header says " : "trailing data: header says ") +
+                        std::to_string(h.payloadBytes + kHeaderBytes) + " bytes, file has " + std::to_string(totalBytes));
+    if (h.count == 0 || h.count > kMaxSnapshotsPerFile)
+        return fail(error, name, "bad snapshot count " + std::to_string(h.count));
+    return true;
+}
 
-    PayloadReader in(mem, file, payloadBytes);
+/// Grows `values` to n elements as the bytes arrive, a chunk at a time: the memory touched is never
+/// more than what was really read, whatever size was declared.
+template <typename T> bool readArray(PayloadReader& in, std::vector<T>& values, uint64_t n)
+{
+    constexpr size_t kChunkValues = (16u << 20) / sizeof(T);
+    values.reserve(size_t(n));
+    while (values.size() < n)
+    {
+        const size_t at = values.size();
+        const size_t take = size_t(std::min<uint64_t>(kChunkValues, n - at));
+        values.resize(at + take);
+        if (!in.read(values.data() + at, take * sizeof(T)))
+            return false;
+    }
+    return true;
+}
+
+bool parseSnapshots(const uint8_t* mem, std::FILE* file, const Header& header, const std::string& name,
+                    std::vector<WeatherSnapshot>& out, std::string& error)
+{
+    const uint32_t version = header.version;
+    const uint32_t count = header.count;
+    const uint32_t payloadCrc = header.payloadCrc;
+    PayloadReader in(mem, file, header.payloadBytes);
     std::vector<WeatherSnapshot> snapshots(count);
     for (uint32_t si = 0; si < count; ++si)
     {
@@ -266,18 +301,7 @@ bool parseSnapshots(const uint8_t* mem, std::FILE* file, uint64_t totalBytes, co
                 const uint64_t bytes = n * (it->f32 ? 4u : 1u);
                 if (bytes > in.left())
                     return fail(error, where, "truncated in array '" + arrayName + "'");
-                bool ok = false;
-                if (it->f32)
-                {
-                    it->f32->resize(n);
-                    ok = in.read(it->f32->data(), bytes);
-                }
-                else
-                {
-                    it->u8->resize(n);
-                    ok = in.read(it->u8->data(), bytes);
-                }
-                if (!ok)
+                if (!(it->f32 ? readArray(in, *it->f32, n) : readArray(in, *it->u8, n)))
                     return fail(error, where, "read error in array '" + arrayName + "'");
             }
         }
@@ -337,24 +361,82 @@ bool parseSnapshotBytes(const void* data, size_t size, const std::string& name, 
     if (size > 0)  // an empty buffer may come with a null pointer, which memcpy must never get (UBSan)
         std::memcpy(header, bytes, std::min(size, kHeaderBytes));
     const size_t skip = std::min(size, kHeaderBytes);
-    return parseSnapshots(bytes + skip, nullptr, size, header, name, out, error);
+    Header h;
+    if (!parseHeader(header, size, name, h, error))
+        return false;
+    try
+    {
+        return parseSnapshots(bytes + skip, nullptr, h, name, out, error);
+    }
+    catch (const std::exception& e)  // bad_alloc / length_error: sizes within the limits but not in memory
+    {
+        out.clear();
+        return fail(error, name, std::string("out of memory while reading (") + e.what() + ")");
+    }
 }
 
 bool readSnapshotFile(const std::string& path, std::vector<WeatherSnapshot>& out, std::string& error)
 {
     out.clear();
-    std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
-    if (!f)
-        return fail(error, path, std::string("cannot open: ") + std::strerror(errno));
+    // O_NONBLOCK: opening a FIFO must not wait for a writer (it would wedge a loader thread for good);
+    // O_NOFOLLOW: a link is refused, not followed. Whatever was opened is then checked before reading.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0)
+        return fail(error, path, errno == ELOOP ? std::string("is a symbolic link (weather files are not followed)")
+                                                : std::string("cannot open: ") + std::strerror(errno));
     struct stat st = {};
-    if (fstat(fileno(f.get()), &st) != 0 || !S_ISREG(st.st_mode))
-        return fail(error, path, "not a regular file");
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))
+    {
+        ::close(fd);
+        return fail(error, path, "not a regular file (FIFOs, devices and folders are refused)");
+    }
+    std::unique_ptr<std::FILE, FileCloser> f(::fdopen(fd, "rb"));
+    if (!f)
+    {
+        ::close(fd);
+        return fail(error, path, std::string("cannot open: ") + std::strerror(errno));
+    }
     uint8_t header[kHeaderBytes] = {};
     const size_t got = std::fread(header, 1, kHeaderBytes, f.get());
     const uint64_t total = uint64_t(st.st_size);
     if (got != std::min<uint64_t>(total, kHeaderBytes))
         return fail(error, path, "read error in header");
-    return parseSnapshots(nullptr, f.get(), total, header, path, out, error);
+    Header h;
+    if (!parseHeader(header, total, path, h, error))
+        return false;
+    // A file with holes has a length but not the bytes: its declared arrays would be zeros read from
+    // nowhere. Writers never leave holes; some slack allows for filesystems that store zeros compactly.
+    const uint64_t storedBytes = uint64_t(st.st_blocks) * 512u;
+    if (total > kSparseSlackBytes && storedBytes < total / 8)
+        return fail(error, path, "sparse file: " + std::to_string(total) + " bytes long but only " +
+                                     std::to_string(storedBytes) + " stored");
+    // The payload checksum comes first, before anything is allocated: a corrupted or forged file costs
+    // one read through a fixed buffer, never memory by its declared sizes.
+    {
+        std::vector<uint8_t> buffer(1u << 20);
+        uint32_t crc = 0;
+        for (uint64_t left = h.payloadBytes; left > 0;)
+        {
+            const size_t n = size_t(std::min<uint64_t>(left, buffer.size()));
+            if (std::fread(buffer.data(), 1, n, f.get()) != n)
+                return fail(error, path, "read error in payload");
+            crc = crc32c(buffer.data(), n, crc);
+            left -= n;
+        }
+        if (crc != h.payloadCrc)
+            return fail(error, path, "payload checksum mismatch (corrupted file)");
+        if (std::fseek(f.get(), long(kHeaderBytes), SEEK_SET) != 0)
+            return fail(error, path, std::string("seek: ") + std::strerror(errno));
+    }
+    try
+    {
+        return parseSnapshots(nullptr, f.get(), h, path, out, error);
+    }
+    catch (const std::exception& e)  // bad_alloc / length_error: sizes within the file but not in memory
+    {
+        out.clear();
+        return fail(error, path, std::string("out of memory while reading (") + e.what() + ")");
+    }
 }
 
 bool writeSnapshotFile(const std::string& path, const std::vector<WeatherSnapshot>& snapshots, std::string& error)

@@ -14,8 +14,9 @@
 //                 names, provenance, 3D level pressures and the list of arrays that follow), then each
 //                 listed array as raw little-endian float32 or uint8 values, in the listed order.
 //
-// Reading never trusts a size before checking it against the bytes that are left, so a corrupted,
-// truncated or foreign file is rejected with a message and no large allocation.
+// Reading never trusts a size before checking it against the bytes that are left (and, for a file, that
+// are really stored: holes do not count), so a corrupted, truncated, sparse or foreign file is rejected
+// with a message and no large allocation.
 #pragma once
 
 #include "weather_ingest/weather_snapshot.h"
@@ -50,14 +51,16 @@ inline constexpr uint32_t kMaxSnapshotsPerFile = 4096;
 /// @return true when the snapshot can be written and rendered.
 bool validateSnapshot(const WeatherSnapshot& snapshot, std::string& error);
 
-/// Reads every snapshot of a file.
+/// Reads every snapshot of a file. The file is opened without following a symbolic link and without
+/// blocking, and anything but a regular file (a FIFO, a device, a folder) is refused at once.
 ///
 /// @param[in] path the file.
 /// @param[out] out the snapshots in file order; cleared first, and left empty on failure.
 /// @param[out] error on failure a message naming the file and what is wrong (truncated, checksum
 ///   mismatch, unknown version, not a snapshot file, bad field size…).
-/// @return true on success. Never throws for bad input (std::bad_alloc is possible only for files
-///   whose declared sizes fit in the file and the limits above).
+/// @return true on success. Never throws: a file that is sparse (over 16 MiB long with under an eighth
+///   of it stored) or whose payload checksum is wrong is refused before any array is allocated, arrays
+///   grow only as their bytes are read, and an allocation that still fails is this file's error.
 bool readSnapshotFile(const std::string& path, std::vector<WeatherSnapshot>& out, std::string& error);
 
 /// Parses snapshots from bytes already in memory (same rules as readSnapshotFile; used by the fuzzer).

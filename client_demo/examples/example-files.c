@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* libskyclient, files transport: connect, set a view, ask the service to write every frame into a folder,
  * ask for one frame and wait for its JSON sidecar (each file is written atomically, the sidecar last:
- * once it exists, the frame's PNG is complete too).
- *   example-files --socket /run/user/1000/skyservice.sock --dir /tmp/sky-frames */
+ * once it exists, the frame's PNG is complete too). DIR is a folder beneath the service's files_root
+ * (the service writes nowhere else); ROOT is that files_root, where this program looks for the files.
+ *   example-files --socket /run/user/1000/skyservice.sock --root /run/user/1000/skyservice/frames --dir shots */
 #include "skyservice/client/skyclient.h"
 
 #include <stdio.h>
@@ -21,16 +22,19 @@ int main(int argc, char** argv)
 {
     const char* socket_path = NULL;
     const char* dir = NULL;
+    const char* root = NULL;
     for (int i = 1; i + 1 < argc; ++i)
     {
         if (strcmp(argv[i], "--socket") == 0)
             socket_path = argv[i + 1];
         else if (strcmp(argv[i], "--dir") == 0)
             dir = argv[i + 1];
+        else if (strcmp(argv[i], "--root") == 0)
+            root = argv[i + 1];
     }
-    if (!socket_path || !dir)
+    if (!socket_path || !dir || !root)
     {
-        fprintf(stderr, "usage: example-files --socket PATH --dir DIR\n");
+        fprintf(stderr, "usage: example-files --socket PATH --root FILES_ROOT --dir DIR\n");
         return 2;
     }
 
@@ -57,8 +61,8 @@ int main(int argc, char** argv)
         return failed(client, "request_frame", r);
 
     char sidecar[4096], path[4096];
-    snprintf(sidecar, sizeof sidecar, "%s/frame-%08llu.json", dir, (unsigned long long)frame);
-    snprintf(path, sizeof path, "%s/frame-%08llu.png", dir, (unsigned long long)frame);
+    snprintf(sidecar, sizeof sidecar, "%s/%s/frame-%08llu.json", root, dir, (unsigned long long)frame);
+    snprintf(path, sizeof path, "%s/%s/frame-%08llu.png", root, dir, (unsigned long long)frame);
     struct stat st;
     for (int waited_ms = 0; stat(sidecar, &st) != 0; waited_ms += 50)
     {

@@ -496,6 +496,9 @@ SkyResult sky_client_acquire_frame(SkyClient* client, SkyFrame* out_frame)
         sky::ShmFrameView v;
         if (!client->ring.acquire(v))
         {
+            if (v.corrupt && client->ring.stillValid(v))  // a stable slot whose fields do not fit it
+                return fail(client, SKY_ERR_SHM, "frame " + std::to_string(v.slot->frame_id) +
+                                                     ": its size, row or offset fields do not fit its slot (corrupt ring)");
             if (client->ring.latestFrameId() == 0)
                 return fail(client, SKY_ERR_NO_FRAME, "no frame has been published yet");
             continue;
@@ -535,12 +538,10 @@ SkyResult sky_client_release_frame(SkyClient* client, const SkyFrame* frame)
 {
     if (!client)
         return SKY_ERR_ARGUMENT;
-    if (!frame || !client->ring.valid() || frame->slot >= client->ring.header()->slot_count)
+    if (!frame || !client->ring.valid() || frame->slot >= client->ring.slotCount())
         return fail(client, SKY_ERR_ARGUMENT, "not a frame of this client's ring");
-    const SkyShmHeader* h = client->ring.header();
     sky::ShmFrameView v;
-    v.slot = reinterpret_cast<const SkyShmSlot*>(reinterpret_cast<const uint8_t*>(h) + h->slots_offset +
-                                                 frame->slot * h->slot_stride);
+    v.slot = client->ring.slot(frame->slot);  // the geometry checked when the ring was mapped
     v.slotIndex = frame->slot;
     v.sequence = frame->sequence;
     if (!client->ring.stillValid(v))

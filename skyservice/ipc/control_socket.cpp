@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <deque>
 #include <fcntl.h>
@@ -28,6 +29,12 @@ namespace
 /// Bytes read from one client per poll() before the others get their turn (a flood cannot starve them).
 constexpr size_t kReadBudgetBytes = 256 * 1024;
 constexpr int kListenBacklog = 64;
+
+int64_t steadyMs()
+{
+    return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
 
 struct PendingLine
 {
@@ -83,6 +90,10 @@ struct ControlSocketServer::Connection
     std::string partial;         ///< bytes of the current line not yet ended by a newline
     std::deque<PendingLine> out;
     size_t queuedBytes = 0;
+    size_t queuedFds = 0;        ///< descriptors in `out`, ours until sent
+    bool admitted = false;       ///< said hello (ControlSocketServer::admit)
+    int64_t connectedMs = 0;     ///< steady clock
+    int64_t lastInputMs = 0;     ///< steady clock, last bytes received
 };
 
 bool ControlSocketServer::listen(const std::string& path, uint32_t mode, const ControlSocketLimits& limits,
@@ -196,6 +207,43 @@ uint32_t ControlSocketServer::peerUid(ClientId client) const
     return it == clients_.end() ? UINT32_MAX : it->second->uid;
 }
 
+void ControlSocketServer::admit(ClientId client)
+{
+    auto it = clients_.find(client);
+    if (it != clients_.end())
+        it->second->admitted = true;
+}
+
+int ControlSocketServer::expireUnadmitted()
+{
+    const int64_t now = steadyMs();
+    int64_t next = -1;
+    std::vector<std::pair<ClientId, std::string>> expired;
+    for (auto& [id, c] : clients_)
+    {
+        if (c->admitted || c->dead)
+            continue;
+        const int64_t helloDeadline = c->connectedMs + limits_.helloTimeoutMs;
+        const int64_t idleDeadline = c->lastInputMs + limits_.idleWithoutHelloMs;
+        if (now >= helloDeadline)
+            expired.emplace_back(id, "no hello within " + std::to_string(limits_.helloTimeoutMs) + " ms of connecting");
+        else if (now >= idleDeadline)
+            expired.emplace_back(id, "idle for " + std::to_string(limits_.idleWithoutHelloMs) + " ms without hello");
+        else
+        {
+            const int64_t in = std::min(helloDeadline, idleDeadline) - now;
+            next = next < 0 ? in : std::min(next, in);
+        }
+    }
+    for (const auto& [id, why] : expired)
+    {
+        nlohmann::json j = {{"type", "error"}, {"code", "failed"}, {"message", "timeout: " + why + "; closing"}};
+        send(id, j.dump());
+        disconnect(id);
+    }
+    return int(next);
+}
+
 void ControlSocketServer::disconnect(ClientId client)
 {
     auto it = clients_.find(client);
@@ -206,7 +254,7 @@ void ControlSocketServer::disconnect(ClientId client)
 }
 
 // Writes what the socket takes now. False when the peer is gone (the connection is marked dead).
-static bool flushConnection(int fd, std::deque<PendingLine>& out, size_t& queuedBytes)
+static bool flushConnection(int fd, std::deque<PendingLine>& out, size_t& queuedBytes, size_t& queuedFds)
 {
     while (!out.empty())
     {
@@ -216,6 +264,7 @@ static bool flushConnection(int fd, std::deque<PendingLine>& out, size_t& queued
         ssize_t n = sendWithFds(fd, data, left, p.fds.data(), p.fds.size());
         if (n < 0)
             return errno == EAGAIN || errno == EWOULDBLOCK;
+        queuedFds -= p.fds.size();
         closeAll(p.fds);  // they went with the first byte sent
         p.sent += size_t(n);
         queuedBytes -= size_t(n);
@@ -234,9 +283,12 @@ bool ControlSocketServer::send(ClientId client, std::string_view line, const std
     Connection& c = *it->second;
     if (line.find('\n') != std::string_view::npos || fds.size() > kMaxFdsPerMessage)
         return false;  // would break the framing: a caller bug, never sent
-    if (c.queuedBytes + line.size() + 1 > limits_.maxQueuedReplyBytes)
+    // It is not reading its replies: we will not buffer without bound, in bytes, in entries or in
+    // descriptors (each queued Vulkan reply holds three; a client must not run the daemon out of them).
+    if (c.queuedBytes + line.size() + 1 > limits_.maxQueuedReplyBytes || c.out.size() >= limits_.maxQueuedReplies ||
+        c.queuedFds + fds.size() > limits_.maxQueuedFds)
     {
-        disconnect(client);  // it is not reading its replies; we will not buffer without bound
+        disconnect(client);
         return false;
     }
     PendingLine p;
@@ -254,8 +306,9 @@ bool ControlSocketServer::send(ClientId client, std::string_view line, const std
         p.fds.push_back(copy);
     }
     c.queuedBytes += p.data.size();
+    c.queuedFds += p.fds.size();
     c.out.push_back(std::move(p));
-    if (!flushConnection(c.fd, c.out, c.queuedBytes))
+    if (!flushConnection(c.fd, c.out, c.queuedBytes, c.queuedFds))
     {
         disconnect(client);
         return false;
@@ -287,36 +340,6 @@ void ControlSocketServer::poll(int timeoutMs, const Handlers& handlers)
     reap();
     if (listenFd_ < 0)
         return;
-    // New connections: over the limit they are told so and closed.
-    auto acceptClients = [&] {
-        for (;;)
-        {
-            int fd = ::accept4(listenFd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
-            if (fd < 0)
-                return;  // EAGAIN (all taken), or a transient error (EMFILE...): try at the next poll
-            if (clients_.size() >= limits_.maxClients)
-            {
-                nlohmann::json busy = {{"type", "error"},
-                                       {"code", "failed"},
-                                       {"message", "busy: the service serves at most " +
-                                                       std::to_string(limits_.maxClients) + " clients"}};
-                std::string line = busy.dump() + "\n";
-                ssize_t n = ::send(fd, line.data(), line.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
-                (void)n;
-                ::close(fd);
-                continue;
-            }
-            auto* c = new Connection;
-            c->fd = fd;
-            ucred cred{};
-            socklen_t len = sizeof cred;
-            c->uid = ::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) == 0 ? uint32_t(cred.uid) : UINT32_MAX;
-            ClientId id = nextId_++;
-            clients_[id] = c;
-            if (handlers.connected)
-                handlers.connected(id);
-        }
-    };
     // One client's bytes, split into lines (bounded); handlers may send to or disconnect anyone.
     auto readClient = [&](ClientId id) {
         char buffer[65536];
@@ -338,6 +361,7 @@ void ControlSocketServer::poll(int timeoutMs, const Handlers& handlers)
             if (n < 0)
                 return;
             budget -= size_t(n);
+            it->second->lastInputMs = steadyMs();
             std::string_view data(buffer, size_t(n));
             while (!data.empty())
             {
@@ -382,9 +406,20 @@ void ControlSocketServer::poll(int timeoutMs, const Handlers& handlers)
         }
     };
 
+    // After EMFILE the pending connection keeps the listening socket readable: polling it would spin.
+    // It is left out of the poll set until the back-off ends (descriptors may be free again by then).
+    // Slots held by silent connections come back: a client has helloTimeoutMs to say hello.
+    const int nextDeadlineMs = expireUnadmitted();
+    reap();
+    if (nextDeadlineMs >= 0)
+        timeoutMs = timeoutMs < 0 ? nextDeadlineMs : std::min(timeoutMs, nextDeadlineMs);
+    const int64_t now = steadyMs();
+    const bool accepting = now >= acceptPausedUntilMs_;
+    if (!accepting)
+        timeoutMs = int(std::min<int64_t>(timeoutMs < 0 ? INT32_MAX : timeoutMs, acceptPausedUntilMs_ - now));
     std::vector<pollfd> fds;
     std::vector<ClientId> ids;
-    fds.push_back({listenFd_, POLLIN, 0});
+    fds.push_back({accepting ? listenFd_ : -1, POLLIN, 0});
     fds.push_back({wakeFd_, POLLIN, 0});
     for (auto& [id, c] : clients_)
     {
@@ -409,7 +444,7 @@ void ControlSocketServer::poll(int timeoutMs, const Handlers& handlers)
             continue;
         Connection& c = *it->second;
         if (revents & POLLOUT)
-            if (!flushConnection(c.fd, c.out, c.queuedBytes))
+            if (!flushConnection(c.fd, c.out, c.queuedBytes, c.queuedFds))
             {
                 disconnect(ids[i]);
                 continue;
@@ -418,8 +453,50 @@ void ControlSocketServer::poll(int timeoutMs, const Handlers& handlers)
             readClient(ids[i]);
     }
     if (fds[0].revents & POLLIN)
-        acceptClients();
+        acceptClients(handlers);
     reap();
+}
+
+// New connections: over the limit they are told so and closed.
+void ControlSocketServer::acceptClients(const Handlers& handlers)
+{
+    for (;;)
+    {
+        int fd = ::accept4(listenFd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
+        if (fd < 0)
+        {
+            if (errno == EMFILE || errno == ENFILE || errno == ENOBUFS || errno == ENOMEM)
+                acceptPausedUntilMs_ = steadyMs() + limits_.acceptBackoffMs;
+            return;  // EAGAIN: all taken; out of resources: back off, then try again
+        }
+        ucred cred{};
+        socklen_t len = sizeof cred;
+        const uint32_t uid = ::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) == 0 ? uint32_t(cred.uid) : UINT32_MAX;
+        const auto sameUid = size_t(std::count_if(clients_.begin(), clients_.end(),
+                                                  [uid](const auto& kv) { return kv.second->uid == uid; }));
+        std::string busy;
+        if (clients_.size() >= limits_.maxClients)
+            busy = "busy: the service serves at most " + std::to_string(limits_.maxClients) + " clients";
+        else if (limits_.maxClientsPerUid > 0 && sameUid >= limits_.maxClientsPerUid)
+            busy = "busy: uid " + std::to_string(uid) + " already holds its share of " +
+                   std::to_string(limits_.maxClientsPerUid) + " connections";
+        if (!busy.empty())
+        {
+            std::string line = nlohmann::json({{"type", "error"}, {"code", "failed"}, {"message", busy}}).dump() + "\n";
+            ssize_t n = ::send(fd, line.data(), line.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+            (void)n;
+            ::close(fd);
+            continue;
+        }
+        auto* c = new Connection;
+        c->fd = fd;
+        c->uid = uid;
+        c->connectedMs = c->lastInputMs = steadyMs();
+        ClientId id = nextId_++;
+        clients_[id] = c;
+        if (handlers.connected)
+            handlers.connected(id);
+    }
 }
 
 }  // namespace sky

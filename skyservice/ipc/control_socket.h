@@ -22,8 +22,14 @@ struct ControlSocketLimits
 {
     size_t maxLineBytes = 65536;        ///< longer lines are answered "too_long" and skipped to the newline
     size_t maxQueuedReplyBytes = 1 << 20;  ///< a client with more unread replies is disconnected
+    uint32_t maxQueuedReplies = 4096;   ///< … or more unsent replies (each one is a queue entry)
+    uint32_t maxQueuedFds = 24;         ///< … or more unsent file descriptors (8 Vulkan subscribe replies)
+    uint32_t acceptBackoffMs = 100;     ///< out of descriptors (EMFILE) on accept: no accept for this long
     uint32_t maxConsecutiveTooLong = 8; ///< then the client is disconnected
     uint32_t maxClients = 64;           ///< further connections are accepted, told "busy", and closed
+    uint32_t maxClientsPerUid = 48;     ///< one peer uid's share of maxClients (0: no share)
+    uint32_t helloTimeoutMs = 10000;    ///< a connection not admit()ted by then is told so and closed
+    uint32_t idleWithoutHelloMs = 3000; ///< … as is one not admitted that sends nothing for this long
 };
 
 class ControlSocketServer
@@ -59,14 +65,20 @@ public:
     /// over its reply limit (it is then disconnected).
     bool send(ClientId client, std::string_view line, const std::vector<int>& fds = {});
     void disconnect(ClientId client);
+    /// The client said hello: the hello and idle timeouts no longer apply to it.
+    void admit(ClientId client);
     size_t clientCount() const { return clients_.size(); }
     /// Uid of the peer (SO_PEERCRED), for the log.
     uint32_t peerUid(ClientId client) const;
 
 private:
     struct Connection;
+    void acceptClients(const Handlers& handlers);
+    /// Closes connections past their hello or idle deadline; returns ms until the next deadline (-1: none).
+    int expireUnadmitted();
     std::string path_;
     int listenFd_ = -1;
+    int64_t acceptPausedUntilMs_ = 0;  ///< steady-clock ms; accepting waits after EMFILE/ENFILE
     int wakeFd_ = -1;
     ControlSocketLimits limits_;
     ClientId nextId_ = 1;

@@ -110,6 +110,9 @@ struct Checker
         if (!v.is_string())
             return fail("bad_type", field, field + " must be a string, got " + shownValue(v));
         out = v.get<std::string>();
+        // C APIs (open, the log) would silently cut the string at an embedded NUL.
+        if (out.find('\0') != std::string::npos)
+            return fail("out_of_range", field, field + " contains a NUL character");
         return true;
     }
 

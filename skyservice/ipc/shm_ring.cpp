@@ -161,12 +161,6 @@ uint64_t monotonicNs()
     return uint64_t(ts.tv_sec) * 1000000000ull + uint64_t(ts.tv_nsec);
 }
 
-const SkyShmSlot* slotAt(const SkyShmHeader* h, uint64_t index)
-{
-    return reinterpret_cast<const SkyShmSlot*>(reinterpret_cast<const uint8_t*>(h) + h->slots_offset +
-                                               index * h->slot_stride);
-}
-
 }  // namespace
 
 bool ShmRingWriter::create(const ShmRingConfig& config, std::string& error)
@@ -438,7 +432,18 @@ bool ShmRingReader::open(const std::string& name, std::string& error)
     }
     header_ = h;
     mappedBytes_ = size;
+    slotCount_ = h->slot_count;
+    slotsOffset_ = h->slots_offset;
+    slotStride_ = h->slot_stride;
     return true;
+}
+
+const SkyShmSlot* ShmRingReader::slot(uint32_t index) const
+{
+    if (!header_ || index >= slotCount_)
+        return nullptr;
+    return reinterpret_cast<const SkyShmSlot*>(reinterpret_cast<const uint8_t*>(header_) + slotsOffset_ +
+                                               uint64_t(index) * slotStride_);
 }
 
 void ShmRingReader::close()
@@ -447,6 +452,8 @@ void ShmRingReader::close()
         ::munmap(const_cast<SkyShmHeader*>(header_), mappedBytes_);
     header_ = nullptr;
     mappedBytes_ = 0;
+    slotCount_ = 0;
+    slotsOffset_ = slotStride_ = 0;
 }
 
 uint64_t ShmRingReader::latestFrameId() const
@@ -458,21 +465,35 @@ bool ShmRingReader::acquire(ShmFrameView& out) const
 {
     if (!header_ || __atomic_load_n(&header_->latest_frame_id, __ATOMIC_ACQUIRE) == 0)
         return false;
+    out.corrupt = false;
     const uint64_t index = __atomic_load_n(&header_->latest_slot, __ATOMIC_ACQUIRE);
-    if (index >= header_->slot_count)
+    if (index >= slotCount_)
         return false;
-    const SkyShmSlot* s = slotAt(header_, index);
+    const SkyShmSlot* s = slot(uint32_t(index));
     const uint64_t seq = __atomic_load_n(&s->sequence, __ATOMIC_ACQUIRE);
     if (seq & 1u)
         return false;
-    // The offsets are part of the read (checked again at release): bound them by the slot's stride so
-    // that a torn or corrupt slot can never point outside the mapping.
-    const uint64_t stride = header_->slot_stride;
+    // Every field a client uses is part of the read (checked again at release): bound them by the
+    // slot's stride so that a torn or scribbled slot can never point, or size a read, outside it.
+    const uint64_t stride = slotStride_;
     const uint64_t imageOffset = s->image_offset, imageBytes = s->image_bytes;
     const uint64_t shadowOffset = s->shadow_offset, shadowBytes = s->shadow_bytes;
-    if (imageOffset > stride || imageBytes > stride - imageOffset || shadowOffset > stride ||
-        shadowBytes > stride - shadowOffset)
+    const uint64_t width = s->view.width, height = s->view.height, rowBytes = s->row_bytes;
+    const uint64_t shadowTexels = s->shadow.size_texels;
+    const uint32_t bppDisplay = bytesPerPixel(s->format);
+    const bool slotFits = imageOffset <= stride && imageBytes <= stride - imageOffset && shadowOffset <= stride &&
+                      shadowBytes <= stride - shadowOffset &&
+                      (imageBytes == 0 || (bppDisplay != 0 && width <= kMaxDimension && height <= kMaxDimension &&
+                                           rowBytes >= width * bppDisplay && rowBytes * height <= imageBytes)) &&
+                      (shadowBytes == 0 ||
+                       (shadowTexels <= kMaxDimension && shadowTexels * shadowTexels * sizeof(float) <= shadowBytes));
+    if (!slotFits)
+    {
+        out.corrupt = true;
+        out.slot = s;
+        out.sequence = seq;
         return false;
+    }
     const auto* base = reinterpret_cast<const uint8_t*>(s);
     out.slot = s;
     out.slotIndex = uint32_t(index);

@@ -17,7 +17,7 @@ namespace sky
 
 struct ShmRingConfig
 {
-    std::string name;           ///< shm_open name, "/skyservice-<uid>-<pid>" style (leading slash, no other)
+    std::string name;           ///< shm_open name, "/skyservice-<uid>-<hash>" style (leading slash, no other)
     uint32_t slotCount = 3;     ///< >= 2
     uint32_t maxWidth = 1920;   ///< largest frame (pixels)
     uint32_t maxHeight = 1080;
@@ -98,6 +98,7 @@ struct ShmFrameView
     const uint8_t* pixels = nullptr;
     const float* shadow = nullptr;
     const uint8_t* layers[SKY_LAYER_COUNT] = {};  ///< null where the layer is not in the frame
+    bool corrupt = false;  ///< acquire() failed on a stable slot whose fields do not fit its stride
 };
 
 /// The client's side: maps the ring read-only and checks its header.
@@ -115,8 +116,13 @@ public:
     bool valid() const { return header_ != nullptr; }
 
     uint64_t latestFrameId() const;
-    /// The newest complete slot; false when none is published yet or the writer is in it (retry).
+    /// The newest complete slot; false when none is published yet or the writer is in it (retry), or
+    /// when its fields (width, height, row_bytes, offsets, shadow size) do not fit the slot (out.corrupt).
+    /// The ring's geometry is the one checked at open(), never read back from the mapping.
     bool acquire(ShmFrameView& out) const;
+    /// The slot `index` (< slotCount()) of the geometry checked at open().
+    const SkyShmSlot* slot(uint32_t index) const;
+    uint32_t slotCount() const { return slotCount_; }
     /// True when the slot's sequence is still the one seen at acquire (the read was not torn).
     bool stillValid(const ShmFrameView& view) const;
     const SkyShmHeader* header() const { return header_; }
@@ -124,6 +130,10 @@ public:
 private:
     const SkyShmHeader* header_ = nullptr;
     uint64_t mappedBytes_ = 0;
+    // The geometry as checked at open(): anyone who may read the ring may be able to write it too
+    // (socket_mode), so the header's copy is never trusted afterwards.
+    uint32_t slotCount_ = 0;
+    uint64_t slotsOffset_ = 0, slotStride_ = 0;
 };
 
 }  // namespace sky

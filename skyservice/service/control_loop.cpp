@@ -126,6 +126,7 @@ void ControlLoop::dispatch(ClientId client, const Request& request)
         }
         clients_[client].hello = true;
         clients_[client].name = request.clientName;
+        c_.server->admit(client);  // past the hello and idle timeouts
         c_.server->send(client, replyWithId(request, {{"type", "hello"},
                                                      {"protocol", kProtocolVersion},
                                                      {"service", "skyservice 0.1"},
@@ -159,8 +160,18 @@ void ControlLoop::dispatch(ClientId client, const Request& request)
         return;
     }
     case RequestType::Status:
-        c_.server->send(client, replyWithId(request, statusJson()));
+    {
+        nlohmann::json status = statusJson();
+        // Why a file was refused (missing, not a file, bad magic...) tells whether a path exists and
+        // what it is: only the daemon's own user learns that; others are told "cannot load".
+        if (c_.server->peerUid(client) != uint32_t(::geteuid()) && status["weather"]["last_error"].is_string())
+        {
+            std::lock_guard<std::mutex> lock(s.mutex);
+            status["weather"]["last_error"] = s.weather.lastErrorPath + ": cannot load";
+        }
+        c_.server->send(client, replyWithId(request, status));
         return;
+    }
     case RequestType::WriteFiles:
     {
         if (request.path.empty())
@@ -168,11 +179,15 @@ void ControlLoop::dispatch(ClientId client, const Request& request)
             sendError(client, request.id, "missing_field", "write_files needs a prefix", "prefix");
             return;
         }
+        std::string why;
+        if (!FilesRoot::checkName(request.path, "prefix", why))
         {
-            std::lock_guard<std::mutex> lock(s.mutex);
-            s.jobs.push_back(RenderJob{RenderJob::WriteFiles, client, request.id, request.path});
+            sendError(client, request.id, "out_of_range", why, "prefix");
+            return;
         }
-        s.wake.notify_all();
+        SKY_LOG_INFO("write_files %s (client %llu, uid %u)", request.path.c_str(), (unsigned long long)client,
+                     c_.server->peerUid(client));
+        queueJob(client, request, RenderJob{RenderJob::WriteFiles, client, request.id, request.path});
         return;  // the render thread replies once the files are written
     }
     }
@@ -278,28 +293,75 @@ void ControlLoop::subscribe(ClientId client, const Request& request)
         return;
     }
     case Transport::Vulkan:
-        {
-            std::lock_guard<std::mutex> lock(s.mutex);
-            s.jobs.push_back(RenderJob{RenderJob::SubscribeVulkan, client, request.id, ""});
-        }
-        s.wake.notify_all();
+        queueJob(client, request, RenderJob{RenderJob::SubscribeVulkan, client, request.id, ""});
         return;
     case Transport::Files:
     {
-        std::error_code ec;
-        if (request.path.empty() || !std::filesystem::is_directory(request.path, ec))
+        SKY_LOG_INFO("subscribe files %s (client %llu, uid %u)", request.path.c_str(), (unsigned long long)client,
+                     c_.server->peerUid(client));
+        FilesFolder folder;
+        std::string why;
+        if (!FilesRoot::checkName(request.path, "dir", why))
         {
-            sendError(client, request.id, "failed", "dir '" + request.path + "' is not a folder", "dir");
+            sendError(client, request.id, "out_of_range", why, "dir");
+            return;
+        }
+        if (!c_.filesRoot || !c_.filesRoot->openFolder(request.path, folder, why))
+        {
+            sendError(client, request.id, "failed", c_.filesRoot ? why : "the service writes no files", "dir");
             return;
         }
         {
+            // Every subscription costs each frame it writes: the same dir again replaces the earlier one,
+            // and a client holds a few at most.
             std::lock_guard<std::mutex> lock(s.mutex);
-            s.files.push_back(FilesSubscription{client, request.path, std::max(request.every, 1u), request.fileFormat});
+            FilesSubscription sub{client, request.path, std::max(request.every, 1u), request.fileFormat};
+            auto same = std::find_if(s.files.begin(), s.files.end(), [&](const FilesSubscription& f) {
+                return f.client == client && f.dir == sub.dir;
+            });
+            if (same != s.files.end())
+                *same = sub;
+            else if (size_t(std::count_if(s.files.begin(), s.files.end(), [&](const FilesSubscription& f) {
+                         return f.client == client;
+                     })) >= c_.maxFilesSubscriptionsPerClient)
+            {
+                sendError(client, request.id, "failed",
+                          "busy: a client holds at most " + std::to_string(c_.maxFilesSubscriptionsPerClient) +
+                              " files subscriptions (the same dir again replaces its subscription)",
+                          "dir");
+                return;
+            }
+            else
+                s.files.push_back(sub);
         }
-        c_.server->send(client, okReply(request));
+        c_.server->send(client, okReply(request, {{"dir", folder.shown}}));  // where the files appear
         return;
     }
     }
+}
+
+void ControlLoop::queueJob(ClientId client, const Request& request, RenderJob job)
+{
+    ServiceState& s = *c_.state;
+    size_t queued = 0;
+    {
+        // The render thread takes jobs before frames: one client's pipelined requests must not stall
+        // rendering for everyone.
+        std::lock_guard<std::mutex> lock(s.mutex);
+        queued = size_t(
+            std::count_if(s.jobs.begin(), s.jobs.end(), [client](const RenderJob& j) { return j.client == client; }));
+        if (queued < c_.maxQueuedJobsPerClient)
+            s.jobs.push_back(std::move(job));
+    }
+    if (queued >= c_.maxQueuedJobsPerClient)
+    {
+        sendError(client, request.id, "failed",
+                  "busy: " + std::to_string(queued) +
+                      " of this client's write_files / subscribe vulkan requests are still queued; wait for their "
+                      "replies");
+        return;
+    }
+    s.wake.notify_all();
 }
 
 nlohmann::json ControlLoop::statusJson()

@@ -9,6 +9,7 @@
 #include "skyservice/ipc/protocol.h"
 #include "skyservice/ipc/shm_ring.h"
 #include "skyservice/service/cigi_link.h"
+#include "skyservice/service/files_root.h"
 #include "skyservice/service/service_state.h"
 #include "skyservice/service/weather_loader.h"
 
@@ -25,7 +26,10 @@ struct ControlContext
     WeatherLoader* loader = nullptr;
     const ShmRingWriter* ring = nullptr;
     const CigiLink* cigi = nullptr;  ///< null: no [cigi] port
+    const FilesRoot* filesRoot = nullptr;
     ProtocolLimits limits;
+    uint32_t maxQueuedJobsPerClient = 8;          ///< write_files + subscribe vulkan waiting for the render thread
+    uint32_t maxFilesSubscriptionsPerClient = 4;  ///< distinct dirs; the same dir again replaces its subscription
     std::string deviceName, driver;
     SteadyClock::time_point startedAt = SteadyClock::now();
 };
@@ -56,6 +60,8 @@ private:
     void setView(ClientId client, const Request& request);
     void setTime(ClientId client, const Request& request);
     void subscribe(ClientId client, const Request& request);
+    /// Queues a render-thread job unless the client already has maxQueuedJobsPerClient waiting (then busy).
+    void queueJob(ClientId client, const Request& request, RenderJob job);
 
     ControlContext c_;
     std::unordered_map<ClientId, Client> clients_;

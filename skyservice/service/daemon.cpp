@@ -6,6 +6,7 @@
 #include "skyservice/render/renderer.h"
 #include "skyservice/service/cigi_link.h"
 #include "skyservice/service/control_loop.h"
+#include "skyservice/service/files_root.h"
 #include "skyservice/service/log.h"
 #include "skyservice/service/render_loop.h"
 #include "skyservice/service/service_config.h"
@@ -46,6 +47,7 @@ private:
     ServiceState state_;
     Renderer renderer_;
     ShmRingWriter ring_;
+    FilesRoot filesRoot_;
     ControlSocketServer server_;
     WeatherLoader loader_;
     WeatherWatcher watcher_;
@@ -83,7 +85,9 @@ bool Daemon::readConfig(ServiceConfig& out, std::string& error) const
     if (out.socketPath.empty())
         out.socketPath = defaultSocketPath();
     if (out.shmName.empty())
-        out.shmName = defaultShmName();
+        out.shmName = defaultShmName(out.socketPath);
+    if (out.filesRoot.empty())
+        out.filesRoot = defaultFilesRoot();
     return checkServiceConfig(out, options_.config.empty() ? "command line" : options_.config, error);
 }
 
@@ -105,6 +109,7 @@ void Daemon::onWeather(const std::string& path, std::shared_ptr<const WeatherTim
     if (!timeline)
     {
         state_.weather.lastError = error;
+        state_.weather.lastErrorPath = path;
         SKY_LOG_WARN("weather %s refused: %s (keeping %s)", path.c_str(), error.c_str(), state_.weather.source.c_str());
         return;
     }
@@ -146,6 +151,7 @@ void Daemon::reload()
     if (!(fresh.cigi == config_.cigi))
         SKY_LOG_WARN("SIGHUP: [cigi] changed: takes effect after a restart");
     fresh.cigi = config_.cigi;
+    keep(fresh.filesRoot != config_.filesRoot, "files_root");
     fresh.socketPath = config_.socketPath;
     fresh.socketMode = config_.socketMode;
     fresh.shmName = config_.shmName;
@@ -155,6 +161,7 @@ void Daemon::reload()
     fresh.shadowMapSize = config_.shadowMapSize;
     fresh.device = config_.device;
     fresh.validate = config_.validate;
+    fresh.filesRoot = config_.filesRoot;
 
     setLogLevel(fresh.logLevel);
     {
@@ -241,6 +248,10 @@ int Daemon::run()
         SKY_LOG_ERROR("shared memory: %s", error.c_str());
         return shutdown(kExitFailure);
     }
+    if (filesRoot_.open(config_.filesRoot, error))
+        SKY_LOG_INFO("files are written beneath %s", filesRoot_.path().c_str());
+    else
+        SKY_LOG_ERROR("%s (no files are written)", error.c_str());
     ControlSocketLimits limits;
     if (!server_.listen(config_.socketPath, config_.socketMode, limits, error))
     {
@@ -270,6 +281,7 @@ int Daemon::run()
     cc.state = &state_;
     cc.loader = &loader_;
     cc.ring = &ring_;
+    cc.filesRoot = &filesRoot_;
     cc.limits.maxWidth = config_.maxWidth;
     cc.limits.maxHeight = config_.maxHeight;
     cc.deviceName = renderer_.ctx.deviceName;
@@ -281,6 +293,7 @@ int Daemon::run()
     RenderLoop::Setup setup;
     setup.renderer = &renderer_;
     setup.ring = &ring_;
+    setup.filesRoot = &filesRoot_;
     setup.state = &state_;
     setup.repliesReady = [this] { server_.wake(); };
     setup.exportSlots = config_.shmSlots;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <ctime>
 #include <mutex>
+#include <string>
 
 namespace sky
 {
@@ -55,6 +56,22 @@ void logMessage(LogLevel level, const char* format, ...)
     va_start(args, format);
     std::vsnprintf(text, sizeof text, format, args);
     va_end(args);
+    // One event, one line: control characters from clients (paths, names) are escaped as \xNN, so no
+    // request can forge a log line.
+    std::string line;
+    line.reserve(sizeof text);
+    for (const char* p = text; *p; ++p)
+    {
+        const auto c = static_cast<unsigned char>(*p);
+        if (c < 0x20 || c == 0x7f)
+        {
+            char escaped[5];
+            std::snprintf(escaped, sizeof escaped, "\\x%02x", c);
+            line += escaped;
+        }
+        else
+            line += char(c);
+    }
 
     timespec now{};
     clock_gettime(CLOCK_REALTIME, &now);
@@ -63,7 +80,7 @@ void logMessage(LogLevel level, const char* format, ...)
     char stamp[40];
     std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%S", &utc);
     std::lock_guard<std::mutex> lock(gMutex);
-    std::fprintf(stderr, "%s.%03dZ %-5s %s\n", stamp, int(now.tv_nsec / 1000000), logLevelName(level), text);
+    std::fprintf(stderr, "%s.%03dZ %-5s %s\n", stamp, int(now.tv_nsec / 1000000), logLevelName(level), line.c_str());
     std::fflush(stderr);
 }
 

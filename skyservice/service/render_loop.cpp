@@ -374,15 +374,24 @@ bool RenderLoop::Impl::writeFiles(const std::string& prefix, const std::string& 
     facts.timeIso = formatIso8601Utc(lastRequest.unixTimeS);
     facts.deviceName = setup.renderer->ctx.deviceName;
     facts.driver = setup.renderer->ctx.driverInfo;
-    if (!writeRenderFiles(prefix, lastRequest, result, facts, error))
+    if (!setup.filesRoot)
+    {
+        error = "no files_root: the service writes no files";
         return false;
-    // writeRenderFiles writes both images; a subscription for one format drops the other.
-    std::error_code ignored;
-    if (format == "png")
-        std::filesystem::remove(prefix + ".exr", ignored);
-    else if (format == "exr")
-        std::filesystem::remove(prefix + ".png", ignored);
-    return true;
+    }
+    // `prefix` is relative to files_root, resolved beneath it without following links (files_root.h).
+    static const std::vector<std::string> kSuffixes = {".png", ".exr", ".json", "-shadow.exr", "-shadow.png"};
+    return setup.filesRoot->writeBeneath(prefix, kSuffixes, [&](const std::string& target, std::string& why) {
+        if (!writeRenderFiles(target, lastRequest, result, facts, why))
+            return false;
+        // writeRenderFiles writes both images; a subscription for one format drops the other.
+        std::error_code ignored;
+        if (format == "png")
+            std::filesystem::remove(target + ".exr", ignored);
+        else if (format == "exr")
+            std::filesystem::remove(target + ".png", ignored);
+        return true;
+    }, error);
 }
 
 void RenderLoop::Impl::doJob(const RenderJob& job)

@@ -8,6 +8,7 @@
 
 #include "skyservice/ipc/shm_ring.h"
 #include "skyservice/render/renderer.h"
+#include "skyservice/service/files_root.h"
 #include "skyservice/service/service_state.h"
 
 #include <functional>
@@ -25,6 +26,7 @@ public:
         Renderer* renderer = nullptr;
         ShmRingWriter* ring = nullptr;
         ServiceState* state = nullptr;
+        FilesRoot* filesRoot = nullptr;      ///< every file is written beneath it (null: none)
         std::function<void()> repliesReady;  ///< called after a reply was queued in state->replies
         uint32_t exportSlots = 3;            ///< images of the zero-copy export (the ring's slot count)
         uint32_t exportMaxWidth = 0, exportMaxHeight = 0, exportShadowSize = 0;

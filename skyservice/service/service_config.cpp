@@ -3,12 +3,17 @@
 
 #include "skyservice/app/commands.h"
 #include "skyservice/app/toml_file.h"
+#include "skyservice/service/files_root.h"
 #include "skyservice/sky/ephemeris.h"
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace sky
@@ -133,6 +138,7 @@ std::map<std::string, FieldReader> serviceFields()
     f["shadow_map_extent_m"] = realField(&ServiceConfig::shadowMapExtentM, 100, 1600000);
     f["files_every"] = u32Field(&ServiceConfig::filesEvery, 0, 1000000);
     f["files_dir"] = stringField(&ServiceConfig::filesDir);
+    f["files_root"] = stringField(&ServiceConfig::filesRoot);
     f["files_format"] = stringField(&ServiceConfig::filesFormat, {"png", "exr", "both"});
     f["log_level"] = [](const toml::node& n, ServiceConfig& c, std::string& why) {
         std::optional<std::string> v = n.value<std::string>();
@@ -245,7 +251,17 @@ std::string defaultSocketPath()
     return "/tmp/skyservice-" + std::to_string(getuid()) + ".sock";
 }
 
-std::string defaultShmName() { return "/skyservice-" + std::to_string(getuid()) + "-" + std::to_string(getpid()); }
+std::string defaultShmName(const std::string& socketPath)
+{
+    // FNV-1a of the socket path: stable across restarts (a restarted daemon finds, and replaces, the
+    // ring a killed one left), distinct for two daemons of one user on different sockets.
+    uint64_t hash = 14695981039346656037ull;
+    for (const char c : socketPath)
+        hash = (hash ^ uint8_t(c)) * 1099511628211ull;
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)hash);
+    return "/skyservice-" + std::to_string(getuid()) + "-" + hex;
+}
 
 ServiceConfig defaultServiceConfig()
 {
@@ -263,9 +279,27 @@ ServiceConfig defaultServiceConfig()
 
 bool loadServiceConfig(const std::string& path, ServiceConfig& out, std::string& error)
 {
+    // An empty file, a folder or a FIFO would read as "no settings": every field silently back to its
+    // default on SIGHUP. They are refused like any other bad config.
+    struct stat st{};
+    if (::stat(path.c_str(), &st) != 0)
+    {
+        error = path + ": " + std::strerror(errno);
+        return false;
+    }
+    if (!S_ISREG(st.st_mode) || st.st_size == 0)
+    {
+        error = path + (S_ISREG(st.st_mode) ? ": empty file" : ": not a regular file") + " (refused, not taken as defaults)";
+        return false;
+    }
     toml::table table;
     if (!parseTomlFile(path, table, error))
         return false;
+    if (table.empty())
+    {
+        error = path + ": no settings, only blanks and comments (refused, not taken as defaults)";
+        return false;
+    }
     ServiceConfig c = out;
     c.path = path;
     if (const toml::node* node = table.get("service"))
@@ -336,6 +370,11 @@ bool checkServiceConfig(const ServiceConfig& c, const std::string& where, std::s
         return fail("service.view.height", "= " + std::to_string(c.view.height) + " exceeds service.max_height");
     if (c.filesEvery > 0 && c.filesDir.empty())
         return fail("service.files_dir", "is required when service.files_every > 0");
+    std::string why;
+    if (c.filesEvery > 0 && !FilesRoot::checkName(c.filesDir, "is relative to service.files_root:", why))
+        return fail("service.files_dir", why);
+    if (!c.filesRoot.empty() && c.filesRoot[0] != '/')
+        return fail("service.files_root", "must be an absolute path");
     if (c.socketPath.empty())
         return fail("service.socket_path", "is empty");
     if (c.shadowMapSize > 0 && c.shadowMapSize < 8)

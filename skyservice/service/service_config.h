@@ -30,7 +30,7 @@ struct ServiceConfig
     std::string path;               ///< the file it was read from ("" = built-in defaults)
     std::string socketPath;         ///< default: defaultSocketPath()
     uint32_t socketMode = 0600;     ///< permission bits of the socket file
-    std::string shmName;            ///< shm_open name of the frame ring; default: defaultShmName()
+    std::string shmName;            ///< shm_open name of the frame ring; default: defaultShmName(socketPath)
     std::string weatherDir;         ///< watched for new snapshot files ("" = none)
     std::string weather = "builtin";///< initial weather: "builtin" or a snapshot file
     double renderRateHz = 30;       ///< frames per second; 0 = only on a `render` request
@@ -40,7 +40,8 @@ struct ServiceConfig
     uint32_t shadowMapSize = 0;     ///< shadow map texels per side with every frame; 0 = none
     double shadowMapExtentM = 150000;///< its edge length on the ground (m)
     uint32_t filesEvery = 0;        ///< write files every N frames (0 = never)
-    std::string filesDir;           ///< where (required when filesEvery > 0)
+    std::string filesDir;           ///< where, relative to filesRoot (required when filesEvery > 0)
+    std::string filesRoot;          ///< every file the daemon writes goes beneath it; default: defaultFilesRoot()
     std::string filesFormat = "png";///< png | exr | both
     LogLevel logLevel = LogLevel::Info;
     std::string device;             ///< Vulkan device: index or name part ("" = best)
@@ -55,8 +56,8 @@ struct ServiceConfig
 
 /// $XDG_RUNTIME_DIR/skyservice.sock, else /tmp/skyservice-<uid>.sock.
 std::string defaultSocketPath();
-/// "/skyservice-<uid>-<pid>".
-std::string defaultShmName();
+/// "/skyservice-<uid>-<16 hex digits of a hash of socketPath>": the same for a restarted daemon.
+std::string defaultShmName(const std::string& socketPath);
 
 /// The defaults of every field (the file's absence). Quality is the default preset.
 ServiceConfig defaultServiceConfig();

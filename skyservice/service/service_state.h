@@ -47,6 +47,7 @@ struct WeatherState
     std::string source = "builtin";  ///< "builtin" or the file
     uint64_t version = 1;            ///< +1 per swap
     std::string lastError;           ///< the last refused file and why ("" after a good load)
+    std::string lastErrorPath;       ///< that file: all that clients of another uid are told
 };
 
 /// The weather a published frame drew (status `weather.frame`): which load, sampled at which time.

@@ -48,9 +48,21 @@ void WeatherLoader::run()
             path = queue_.front();
             queue_.pop_front();
         }
-        auto timeline = std::make_shared<WeatherTimeline>();
+        // An exception escaping this thread would end the process: anything that can still throw
+        // (an allocation the file's checked sizes allow but memory does not) is that file's error.
+        std::shared_ptr<WeatherTimeline> timeline;
         std::string error;
-        if (timeline->loadFile(path, error))
+        bool ok = false;
+        try
+        {
+            timeline = std::make_shared<WeatherTimeline>();
+            ok = timeline->loadFile(path, error);
+        }
+        catch (const std::exception& e)
+        {
+            error = path + ": " + e.what();
+        }
+        if (ok)
             done_(path, timeline, "");
         else
             done_(path, nullptr, error.empty() ? path + ": could not be loaded" : error);

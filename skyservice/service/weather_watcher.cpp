@@ -5,6 +5,7 @@
 #include <cstring>
 #include <poll.h>
 #include <sys/inotify.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace sky
@@ -49,8 +50,11 @@ bool WeatherWatcher::start(const std::string& dir, std::function<void(const std:
                 if (e->len == 0 || (e->mask & IN_ISDIR))
                     continue;
                 std::string name(e->name);
-                if (isSnapshotFileName(name))
-                    onFile(dir_ + "/" + name);
+                // Only regular files go to the loader (a FIFO renamed in must not even be queued).
+                struct stat st{};
+                const std::string path = dir_ + "/" + name;
+                if (isSnapshotFileName(name) && ::lstat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode))
+                    onFile(path);
             }
         }
     });

@@ -3,6 +3,7 @@
 // extension sky-ingest writes) that was closed after writing (IN_CLOSE_WRITE) or renamed into the
 // folder (IN_MOVED_TO: sky-ingest writes "<name>.tmp.<pid>" and renames it, so a reader never sees
 // half a file). Each such file is reported once per event; loading it is the WeatherLoader's job.
+// Anything but a regular file (a FIFO, a link, a folder with that name) is ignored.
 #pragma once
 
 #include <atomic>

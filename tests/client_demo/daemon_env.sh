@@ -23,6 +23,7 @@ start_daemon() {
     cat > "$dir/service.toml" <<TOML
 [service]
 socket_path = "$dir/sky.sock"
+files_root = "$dir/frames"
 render_rate_hz = 0.0
 max_width = 320
 max_height = 180

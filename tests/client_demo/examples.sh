@@ -17,8 +17,8 @@ echo "$out"
 echo "$out" | grep -Eq '^frame [0-9]+: 160x90, mean RGB [0-9.]+, shadow map 64 texels, intact$' ||
     { echo "FAIL: example-shm printed something else"; exit 1; }
 
-mkdir "$dir/frames"
-out=$("$files" --socket "$dir/sky.sock" --dir "$dir/frames")
+mkdir -p "$dir/frames/shots"  # beneath the daemon's files_root (daemon_env.sh)
+out=$("$files" --socket "$dir/sky.sock" --root "$dir/frames" --dir shots)
 echo "$out"
 png=$(echo "$out" | sed -n 's/^frame [0-9]*: \(.*\.png\), [0-9]* bytes$/\1/p')
 [ -n "$png" ] && [ -f "$png" ] || { echo "FAIL: example-files named no PNG that exists"; exit 1; }

@@ -216,3 +216,47 @@ TEST(BadInput, MissingFileIsAnIoError)
 
 }  // namespace
 }  // namespace sky
+
+namespace sky
+{
+namespace
+{
+
+// Before issue 24 a few kB of GRIB2 holding constant fields on a large grid converted into a snapshot
+// hundreds of times its size (a 179-byte file: 300 MB). Decoded fields and output are now each held to
+// max(floor, ratio x input bytes), with --allow-large-output (MappingOptions::allowLargeOutput) to pass.
+TEST(BadInput, AmplifyingInputIsRefusedUnlessAllowed)
+{
+    const LatLonGrid g = {.lat0Deg = 89.5, .lon0Deg = 0, .dLatDeg = -0.5, .dLonDeg = 0.5, .nLat = 200, .nLon = 200};
+    const std::string path = test::tempPath("amplifying.grib2");
+    writeGribFile(path, test::gfsLikeFields(g));
+    const uint64_t inputBytes = std::filesystem::file_size(path);
+    MappingOptions o;
+    o.maxAmplification = 2;
+    auto refusal = [&](const MappingOptions& options) -> std::string {
+        try
+        {
+            convertFiles({path}, options, {});
+        }
+        catch (const IngestError& e)
+        {
+            EXPECT_EQ(e.kind(), IngestErrorKind::TooLarge) << e.what();
+            return e.what();
+        }
+        return "";
+    };
+    o.amplificationFloorBytes = 64 * 1024;  // below one decoded field (160 kB): refused before decoding it
+    std::string why = refusal(o);
+    EXPECT_NE(why.find("--allow-large-output"), std::string::npos) << why;
+    o.amplificationFloorBytes = 2500 * 1024;  // below all decoded fields (3.8 MB) and the snapshot (4 MB)
+    why = refusal(o);
+    EXPECT_NE(why.find("decoding"), std::string::npos) << why << " (input " << inputBytes << " bytes)";
+    EXPECT_NE(why.find("--allow-large-output"), std::string::npos) << why;
+    o.allowLargeOutput = true;
+    EXPECT_EQ(refusal(o), "");
+    // The defaults let ordinary inputs through.
+    EXPECT_EQ(refusal(MappingOptions{}), "");
+}
+
+}  // namespace
+}  // namespace sky

@@ -103,6 +103,7 @@ void FakeService::onLine(ClientId client, std::string_view line)
     {
     case RequestType::Hello:
         helloDone_.push_back(client);
+        server_.admit(client);
         server_.send(client, replyWithId(r, {{"type", "hello"}, {"protocol", 1}, {"service", "fake"},
                                              {"device", "none"}, {"max_width", 64}, {"max_height", 32}}));
         return;

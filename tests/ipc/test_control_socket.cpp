@@ -10,6 +10,8 @@
 #include <atomic>
 #include <chrono>
 #include <fcntl.h>
+#include <filesystem>
+#include <sys/resource.h>
 #include <memory>
 #include <mutex>
 #include <sys/mman.h>
@@ -34,6 +36,7 @@ struct EchoServer
     std::atomic<int> connected{0}, disconnected{0};
     std::atomic<int64_t> longestRoundUs{0};
     std::atomic<size_t> clients{0};
+    std::atomic<uint64_t> rounds{0};  ///< poll() calls: a spinning loop makes thousands a second
 
     bool start(const std::string& path, const ControlSocketLimits& limits = {}, uint32_t mode = 0600)
     {
@@ -62,6 +65,11 @@ struct EchoServer
                 server.send(id, "{\"type\":\"fd\"}", {fd});
                 ::close(fd);  // the server keeps its own dup until it is sent
             }
+            else if (line == "hello")  // as the service does on a good hello
+            {
+                server.admit(id);
+                server.send(id, "welcome");
+            }
             else if (line == "uid")
                 server.send(id, "uid " + std::to_string(server.peerUid(id)));
             else
@@ -74,6 +82,7 @@ struct EchoServer
             const auto us = std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - t0);
             longestRoundUs = std::max<int64_t>(longestRoundUs.load(), us.count());
             clients = server.clientCount();
+            ++rounds;
         }
     }
     ~EchoServer()
@@ -325,6 +334,149 @@ TEST(ControlSocket, WakeEndsAPollEarly)
     waker.join();
     EXPECT_LT(ms, 5000.0);
     EXPECT_FALSE(server.send(12345, "nobody"));
+}
+
+}  // namespace
+}  // namespace sky
+
+namespace sky
+{
+namespace
+{
+
+size_t openFdCount()
+{
+    size_t n = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator("/proc/self/fd"))
+        ++n;
+    return n;
+}
+
+// Before issue 24 only the bytes of a client's queued replies were bounded: a client that asked for
+// replies carrying descriptors and never read them made the server hold every one (the daemon reached
+// 3 610 descriptors), and thousands of tiny replies were queued one entry each. Both now disconnect it.
+TEST(ControlSocket, QueuedRepliesAreBoundedInCountAndDescriptors)
+{
+    test::TempDir dir;
+    EchoServer s;
+    ASSERT_TRUE(s.start(dir.file("s.sock")));
+    const size_t fdsBefore = openFdCount();
+    RawClient hoarder(dir.file("s.sock"));
+    ASSERT_TRUE(waitFor([&] { return s.connected.load() == 1; }));
+    std::string requests;
+    for (int i = 0; i < 1500; ++i)
+        requests += "fd\n";
+    ASSERT_TRUE(hoarder.sendAll(requests));
+    ASSERT_TRUE(waitFor([&] { return s.disconnected.load() == 1; })) << "holding " << openFdCount() - fdsBefore << " fds";
+    EXPECT_LE(openFdCount(), fdsBefore + 2);
+
+    RawClient chatty(dir.file("s.sock"));
+    ASSERT_TRUE(waitFor([&] { return s.connected.load() == 2; }));
+    requests.clear();
+    for (int i = 0; i < 20000; ++i)
+        requests += "x\n";
+    ASSERT_TRUE(chatty.sendAll(requests) || s.disconnected.load() == 2);
+    ASSERT_TRUE(waitFor([&] { return s.disconnected.load() == 2; })) << "20000 tiny unread replies were all queued";
+}
+
+// Before issue 24, with the process out of descriptors (EMFILE) a pending connection kept the
+// listening socket readable and the poll loop spun at full speed. It backs off now, and serves the
+// connection once descriptors are free again.
+TEST(ControlSocket, OutOfDescriptorsOnAcceptBacksOffAndRecovers)
+{
+    test::TempDir dir;
+    EchoServer s;
+    ASSERT_TRUE(s.start(dir.file("s.sock")));
+    rlimit saved{};
+    ASSERT_EQ(getrlimit(RLIMIT_NOFILE, &saved), 0);
+    rlimit tight = saved;
+    tight.rlim_cur = openFdCount() + 16;
+    ASSERT_EQ(setrlimit(RLIMIT_NOFILE, &tight), 0);
+    std::vector<int> fillers;  // every descriptor but one taken; the client's socket takes that one
+    for (int fd; (fd = ::open("/dev/null", O_RDONLY | O_CLOEXEC)) >= 0;)
+        fillers.push_back(fd);
+    ::close(fillers.back());
+    fillers.pop_back();
+    auto late = std::make_unique<RawClient>(dir.file("s.sock"));  // accept() now fails with EMFILE
+    const bool connected = late->connected();
+    const uint64_t roundsBefore = s.rounds.load();
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    const uint64_t rounds = s.rounds.load() - roundsBefore;
+    for (int fd : fillers)
+        ::close(fd);
+    ASSERT_EQ(setrlimit(RLIMIT_NOFILE, &saved), 0);
+    ASSERT_TRUE(connected);
+    // poll(20 ms) idles at about 25 rounds in 500 ms; a spinning loop makes tens of thousands.
+    EXPECT_LT(rounds, 200u) << "the poll loop spun on EMFILE";
+    std::string line;
+    ASSERT_TRUE(late->sendAll("after\n"));
+    ASSERT_EQ(late->readLine(line, 3000), Read::Line);
+    EXPECT_EQ(line, "echo after");
+}
+
+}  // namespace
+}  // namespace sky
+
+namespace sky
+{
+namespace
+{
+
+// Before issue 24 connections that never said hello held their slot for ever: 64 of them locked every
+// other client out. Now a connection must say hello within helloTimeoutMs and, until it has, may not
+// stay silent for idleWithoutHelloMs; a client that said hello stays as long as it likes.
+// (Before the fix neither was closed: the test saw no timeout line.)
+TEST(ControlSocket, ConnectionsWithoutHelloTimeOut)
+{
+    test::TempDir dir;
+    EchoServer s;
+    ControlSocketLimits limits;
+    limits.helloTimeoutMs = 1500;
+    limits.idleWithoutHelloMs = 500;
+    ASSERT_TRUE(s.start(dir.file("s.sock"), limits));
+    RawClient silent(dir.file("s.sock")), chatty(dir.file("s.sock")), polite(dir.file("s.sock"));
+    std::string line;
+    ASSERT_TRUE(polite.sendAll("hello\n"));
+    ASSERT_EQ(polite.readLine(line, 3000), Read::Line);
+    EXPECT_EQ(line, "welcome");
+    // The chatty one talks (so it is never idle) but never says hello: it goes at the hello deadline.
+    bool chattyTimedOut = false;
+    for (int i = 0; i < 100 && !chattyTimedOut; ++i)
+    {
+        if (!chatty.sendAll("ping\n"))
+            break;
+        while (!chattyTimedOut && chatty.readLine(line, 100) == Read::Line)
+            chattyTimedOut = line.find("timeout") != std::string::npos;
+    }
+    EXPECT_TRUE(chattyTimedOut);
+    EXPECT_NE(line.find("no hello within 1500 ms"), std::string::npos) << line;
+    // The silent one went at its idle deadline.
+    ASSERT_EQ(silent.readLine(line, 5000), Read::Line);
+    EXPECT_NE(line.find("idle for 500 ms without hello"), std::string::npos) << line;
+    EXPECT_EQ(silent.readLine(line, 5000), Read::Closed);
+    EXPECT_TRUE(waitFor([&] { return s.disconnected.load() == 2; }));
+    ASSERT_TRUE(polite.sendAll("still\n"));
+    ASSERT_EQ(polite.readLine(line, 3000), Read::Line);
+    EXPECT_EQ(line, "echo still");
+}
+
+// One uid may hold only its share of the slots, so one user cannot take them all.
+TEST(ControlSocket, OneUidHoldsOnlyItsShareOfTheSlots)
+{
+    test::TempDir dir;
+    EchoServer s;
+    ControlSocketLimits limits;
+    limits.maxClients = 4;
+    limits.maxClientsPerUid = 2;
+    ASSERT_TRUE(s.start(dir.file("s.sock"), limits));
+    RawClient a(dir.file("s.sock")), b(dir.file("s.sock"));
+    ASSERT_TRUE(waitFor([&] { return s.connected.load() == 2; }));
+    RawClient c(dir.file("s.sock"));
+    std::string line;
+    ASSERT_EQ(c.readLine(line, 3000), Read::Line);
+    EXPECT_NE(line.find("uid " + std::to_string(::getuid()) + " already holds its share of 2"), std::string::npos)
+        << line;
+    EXPECT_EQ(c.readLine(line, 3000), Read::Closed);
 }
 
 }  // namespace

@@ -261,3 +261,21 @@ TEST(Protocol, Replies)
 
 }  // namespace
 }  // namespace sky
+
+namespace sky
+{
+namespace
+{
+
+// Before issue 24 an embedded NUL ("\u0000") was kept in the parsed string and silently cut by every C
+// API after it (open, the log): "/srv/a.skywx\u0000ignored" loaded /srv/a.skywx. It is refused now.
+TEST(Protocol, NulInStringsIsRefused)
+{
+    expectError({R"({"type":"load_weather","path":"/srv/a.skywx\u0000ignored"})", "out_of_range", "path"});
+    expectError({R"({"type":"hello","protocol":1,"client":"ig\u0000x"})", "out_of_range", "client"});
+    expectError({R"({"type":"write_files","prefix":"a\u0000b"})", "out_of_range", "prefix"});
+    expectError({R"({"type":"subscribe","transport":"files","dir":"d\u0000"})", "out_of_range", "dir"});
+}
+
+}  // namespace
+}  // namespace sky

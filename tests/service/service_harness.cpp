@@ -68,7 +68,8 @@ bool Daemon::start(const std::string& folder, const DaemonConfig& c, std::string
     std::ofstream f(configPath);
     f << "[service]\n"
       << "socket_path = \"" << socketPath << "\"\n"
-      << "shm_name = \"" << shmName << "\"\n"
+      << (c.defaultShmName ? "" : "shm_name = \"" + shmName + "\"\n")
+      << "files_root = \"" << dir << "/frames\"\n"
       << "render_rate_hz = " << c.renderRateHz << "\n"
       << "max_width = 128\nmax_height = 72\n"
       << "quality = \"test\"\n"

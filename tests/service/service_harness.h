@@ -31,6 +31,7 @@ struct DaemonConfig
     std::string weatherDir;
     std::string extraService;  ///< more [service] lines
     std::string extraSections; ///< more sections ([march] ...)
+    bool defaultShmName = false;  ///< leave shm_name out: the daemon names its ring itself
 };
 
 /// The config most tests use: 16x9 frames (enough for the plumbing, fast on lavapipe) rendered at
@@ -58,6 +59,7 @@ public:
 
     pid_t pid = -1;
     std::string socketPath, shmName, configPath, logPath, dir;
+    std::string filesRoot() const { return dir + "/frames"; }  ///< the config's files_root
 
 private:
     bool launch(std::string& error);

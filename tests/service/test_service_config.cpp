@@ -97,3 +97,22 @@ TEST(ServiceConfig, CigiSection)
     QualitySettings q;
     EXPECT_TRUE(applyConfigFile(path, q, error)) << error;
 }
+
+// Before issue 24 an empty file or a folder read as "no settings": on SIGHUP every field silently
+// went back to its default (render rate, quality, watched folder). They are refused like bad values.
+TEST(ServiceConfig, EmptyFileFolderAndCommentOnlyFileAreRefused)
+{
+    skytest::TempDir tmp;
+    const std::string empty = tmp.path + "/empty.toml", comments = tmp.path + "/comments.toml";
+    std::ofstream(empty).close();
+    std::ofstream(comments) << "# nothing but a comment\n\n";
+    for (const std::string& path : {empty, comments, tmp.path})
+    {
+        ServiceConfig c = defaultServiceConfig();
+        c.renderRateHz = 7;
+        std::string error;
+        EXPECT_FALSE(loadServiceConfig(path, c, error)) << path;
+        EXPECT_NE(error.find(path), std::string::npos) << error;
+        EXPECT_EQ(c.renderRateHz, 7.0);  // untouched
+    }
+}

@@ -240,9 +240,9 @@ TEST(ServiceFrames, LoadedWeatherFrameMatchesOneShotRender)
     ASSERT_TRUE(renderOneShotOfTestView(tmp.path, "--weather " + wx, ref, error)) << error;
     EXPECT_TRUE(ref.pixels == pixels) << "the first frame that draws the loaded weather differs from the one-shot render";
     // The sidecars say which weather was drawn: the service's of that frame, and the one-shot's.
-    s = raw.request({{"type", "write_files"}, {"prefix", tmp.path + "/svc"}}, 20000);
+    s = raw.request({{"type", "write_files"}, {"prefix", "svc"}}, 20000);  // beneath files_root
     ASSERT_EQ(s.value("type", ""), "ok") << s;
-    for (const std::string& json : {tmp.path + "/svc.json", tmp.path + "/ref.json"})
+    for (const std::string& json : {d.filesRoot() + "/svc.json", tmp.path + "/ref.json"})
     {
         std::ifstream in(json);
         nlohmann::json j = nlohmann::json::parse(in, nullptr, false);

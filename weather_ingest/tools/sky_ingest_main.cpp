@@ -144,6 +144,8 @@ int main(int argc, char** argv)
     convert->add_flag("-q,--quiet", quiet, "No progress bar and no summary");
     convert->add_flag("--lenient", options.lenient, "Repair bad values (clamp, swap, drop) with warnings");
     convert->add_flag("--with-3d", options.keepLevelFields, "Keep cloud mixing ratio / cover on pressure levels");
+    convert->add_flag("--allow-large-output", options.allowLargeOutput,
+                      "Allow decoded fields or output over max(64 MiB, 100 x the input's size)");
     CLI::App* check = app.add_subcommand("check", "Verify a snapshot file (checksum, structure) and summarise it");
     check->add_option("SNAPSHOT", output, "Snapshot file")->required();
     check->add_flag("-q,--quiet", quiet, "Print only errors");
