@@ -35,7 +35,7 @@ if(SKY_BUILD_INGEST)
              COMMAND bash ${SKY_INGEST_TEST_DIR}/fuzz_test.sh build ${SKY_INGEST_ROOT} ${SKY_INGEST_FUZZ_DIR})
     set_tests_properties(ingest.fuzz.build PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600 FIXTURES_SETUP ingest_fuzz
                          RUN_SERIAL ON)
-    foreach(target grib snapshot)
+    foreach(target grib snapshot snapshot_crafted)
         add_test(NAME ingest.fuzz.${target}
                  COMMAND bash ${SKY_INGEST_TEST_DIR}/fuzz_test.sh ${target} ${SKY_INGEST_ROOT} ${SKY_INGEST_FUZZ_DIR} 8)
         set_tests_properties(ingest.fuzz.${target} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 60
