@@ -3,7 +3,8 @@
 set(SKY_SERVICE_FUZZ_DIR ${CMAKE_CURRENT_BINARY_DIR}/service-fuzz)
 get_filename_component(SKY_SERVICE_FUZZ_ROOT ${CMAKE_CURRENT_LIST_DIR}/.. ABSOLUTE)
 add_test(NAME service.fuzz.build
-         COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/service/fuzz_test.sh build ${SKY_SERVICE_FUZZ_ROOT} ${SKY_SERVICE_FUZZ_DIR})
+         COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/service/fuzz_test.sh build ${SKY_SERVICE_FUZZ_ROOT}
+                 ${SKY_SERVICE_FUZZ_DIR})
 set_tests_properties(service.fuzz.build PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600 FIXTURES_SETUP service_fuzz
                      RUN_SERIAL ON)
 foreach(target protocol service_config)

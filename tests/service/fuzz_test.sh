@@ -24,7 +24,7 @@ build)
     i=$((i + 1)); printf '%s' "$line" > "$build/seeds/protocol/$i"
   done <<'LINES'
 {"type":"hello","protocol":1,"client":"ig","id":1}
-{"type":"set_view","view":{"lat":47.5,"lon":8.5,"alt":1500,"heading":270,"pitch":5,"roll":0,"fov":60,"width":320,"height":180},"id":"a"}
+{"type":"set_view","view":{"lat":47.5,"lon":8.5,"alt":1500,"heading":270,"pitch":5,"fov":60,"width":320},"id":"a"}
 {"type":"set_time","time":"2026-06-21T12:00:00Z","rate":60}
 {"type":"load_weather","path":"/srv/weather/gfs.skywx"}
 {"type":"subscribe","transport":"shm","layers":["display","clouds","depth"]}
