@@ -4,7 +4,8 @@ set(SKY_INGEST_TEST_DIR ${CMAKE_CURRENT_LIST_DIR}/ingest)
 add_executable(ingest_weather_tests ${SKY_INGEST_TEST_DIR}/snapshot_file_test.cpp
                ${SKY_INGEST_TEST_DIR}/weather_timeline_test.cpp
                ${SKY_INGEST_TEST_DIR}/snapshot_hostile_test.cpp)
-target_link_libraries(ingest_weather_tests PRIVATE sky_weather nlohmann_json::nlohmann_json GTest::gtest_main sky_warnings)
+target_link_libraries(ingest_weather_tests PRIVATE sky_weather nlohmann_json::nlohmann_json GTest::gtest_main
+                      sky_warnings)
 gtest_discover_tests(ingest_weather_tests TEST_PREFIX "ingest." DISCOVERY_TIMEOUT 30 PROPERTIES LABELS cpu)
 
 if(TARGET sky_ingest)
@@ -35,7 +36,7 @@ if(SKY_BUILD_INGEST)
              COMMAND bash ${SKY_INGEST_TEST_DIR}/fuzz_test.sh build ${SKY_INGEST_ROOT} ${SKY_INGEST_FUZZ_DIR})
     set_tests_properties(ingest.fuzz.build PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600 FIXTURES_SETUP ingest_fuzz
                          RUN_SERIAL ON)
-    foreach(target grib snapshot)
+    foreach(target grib snapshot snapshot_crafted)
         add_test(NAME ingest.fuzz.${target}
                  COMMAND bash ${SKY_INGEST_TEST_DIR}/fuzz_test.sh ${target} ${SKY_INGEST_ROOT} ${SKY_INGEST_FUZZ_DIR} 8)
         set_tests_properties(ingest.fuzz.${target} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 60

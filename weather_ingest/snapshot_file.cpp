@@ -238,8 +238,10 @@ bool parseHeader(const uint8_t* header, uint64_t totalBytes, const std::string& 
                         ")");
     if (h.payloadBytes != totalBytes - kHeaderBytes)
         return fail(error, name,
-                    (h.payloadBytes > totalBytes - kHeaderBytes ? "truncated: header says " : "trailing data: header says ") +
-                        std::to_string(h.payloadBytes + kHeaderBytes) + " bytes, file has " + std::to_string(totalBytes));
+                    (h.payloadBytes > totalBytes - kHeaderBytes ? "truncated: header says "
+                                                                 : "trailing data: header says ") +
+                        std::to_string(h.payloadBytes + kHeaderBytes) + " bytes, file has " +
+                        std::to_string(totalBytes));
     if (h.count == 0 || h.count > kMaxSnapshotsPerFile)
         return fail(error, name, "bad snapshot count " + std::to_string(h.count));
     return true;

@@ -497,8 +497,9 @@ SkyResult sky_client_acquire_frame(SkyClient* client, SkyFrame* out_frame)
         if (!client->ring.acquire(v))
         {
             if (v.corrupt && client->ring.stillValid(v))  // a stable slot whose fields do not fit it
-                return fail(client, SKY_ERR_SHM, "frame " + std::to_string(v.slot->frame_id) +
-                                                     ": its size, row or offset fields do not fit its slot (corrupt ring)");
+                return fail(client, SKY_ERR_SHM,
+                            "frame " + std::to_string(v.slot->frame_id) +
+                                ": its size, row or offset fields do not fit its slot (corrupt ring)");
             if (client->ring.latestFrameId() == 0)
                 return fail(client, SKY_ERR_NO_FRAME, "no frame has been published yet");
             continue;

@@ -102,13 +102,14 @@ SkyResult sky_client_load_weather(SkyClient* client, const char* snapshot_path);
 /* Asks for one frame now (services configured with render rate 0 render only on request); returns the
  * frame id it will have. */
 SkyResult sky_client_request_frame(SkyClient* client, uint64_t* out_frame_id);
-/* Writes the latest frame to PREFIX.png/.exr/.json (and -shadow.*) on the service's side. */
+/* Writes the latest frame to PREFIX.png/.exr/.json (and -shadow.*) on the service's side; PREFIX is a name
+ * beneath the service's files_root ("shots/a"; no absolute path, no "..": PROTOCOL.md "Files"). */
 SkyResult sky_client_write_files(SkyClient* client, const char* prefix);
 /* The service's status reply (a JSON object, NUL-terminated) copied into buffer. */
 SkyResult sky_client_status(SkyClient* client, char* buffer, size_t buffer_bytes);
 
-/* Files transport: the service writes every `every`-th frame (>= 1) into `dir` (a folder on the service's
- * machine) as DIR/frame-NNNNNNNN.png and/or .exr ("png", "exr" or "both") plus a .json sidecar, each
+/* Files transport: the service writes every `every`-th frame (>= 1) into `dir` (an existing folder beneath
+ * the service's files_root, named relative to it) as DIR/frame-NNNNNNNN.png and/or .exr ("png", "exr" or "both") plus a .json sidecar, each
  * written atomically (temporary file + rename), the .json last: once it exists, the frame's images do too. */
 SkyResult sky_client_subscribe_files(SkyClient* client, const char* dir, uint32_t every, const char* format);
 

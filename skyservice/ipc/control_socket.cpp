@@ -471,7 +471,8 @@ void ControlSocketServer::acceptClients(const Handlers& handlers)
         }
         ucred cred{};
         socklen_t len = sizeof cred;
-        const uint32_t uid = ::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) == 0 ? uint32_t(cred.uid) : UINT32_MAX;
+        const uint32_t uid =
+            ::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) == 0 ? uint32_t(cred.uid) : UINT32_MAX;
         const auto sameUid = size_t(std::count_if(clients_.begin(), clients_.end(),
                                                   [uid](const auto& kv) { return kv.second->uid == uid; }));
         std::string busy;

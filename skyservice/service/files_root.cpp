@@ -206,7 +206,8 @@ bool FilesRoot::prepare(const std::string& prefix, const std::vector<std::string
     return true;
 }
 
-void FilesRoot::markWritten(const FilesFolder& folder, const std::string& base, const std::vector<std::string>& suffixes)
+void FilesRoot::markWritten(const FilesFolder& folder, const std::string& base,
+                            const std::vector<std::string>& suffixes)
 {
     for (const std::string& suffix : suffixes)
     {

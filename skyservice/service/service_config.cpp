@@ -289,7 +289,8 @@ bool loadServiceConfig(const std::string& path, ServiceConfig& out, std::string&
     }
     if (!S_ISREG(st.st_mode) || st.st_size == 0)
     {
-        error = path + (S_ISREG(st.st_mode) ? ": empty file" : ": not a regular file") + " (refused, not taken as defaults)";
+        error = path + (S_ISREG(st.st_mode) ? ": empty file" : ": not a regular file") +
+                " (refused, not taken as defaults)";
         return false;
     }
     toml::table table;

@@ -367,7 +367,8 @@ TEST(ControlSocket, QueuedRepliesAreBoundedInCountAndDescriptors)
     for (int i = 0; i < 1500; ++i)
         requests += "fd\n";
     ASSERT_TRUE(hoarder.sendAll(requests));
-    ASSERT_TRUE(waitFor([&] { return s.disconnected.load() == 1; })) << "holding " << openFdCount() - fdsBefore << " fds";
+    ASSERT_TRUE(waitFor([&] { return s.disconnected.load() == 1; }))
+        << "holding " << openFdCount() - fdsBefore << " fds";
     EXPECT_LE(openFdCount(), fdsBefore + 2);
 
     RawClient chatty(dir.file("s.sock"));

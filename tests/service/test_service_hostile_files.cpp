@@ -156,7 +156,8 @@ TEST(ServiceHostile, PerClientWorkIsBounded)
     }
     for (int i = 0; i < 4; ++i)
     {
-        r = c.request({{"type", "subscribe"}, {"transport", "files"}, {"dir", "d" + std::to_string(i)}, {"every", 1000}});
+        const std::string dir = "d" + std::to_string(i);
+        r = c.request({{"type", "subscribe"}, {"transport", "files"}, {"dir", dir}, {"every", 1000}});
         EXPECT_EQ(r.value("type", ""), i < 3 ? "ok" : "error") << i << " " << r;
     }
     EXPECT_NE(r.value("message", "").find("busy"), std::string::npos) << r;
@@ -251,7 +252,8 @@ TEST(ServiceHostile, ClientTextCannotForgeLogLines)
     ASSERT_TRUE(d.start(tmp.path, tinyFrames(), error)) << error;
     RawClient c;
     ASSERT_TRUE(c.connect(d.socketPath));
-    json r = c.request({{"type", "hello"}, {"protocol", 1}, {"client", "ig\n2026-06-21T12:00:00.000Z error FORGED-NAME"}});
+    const std::string name = "ig\n2026-06-21T12:00:00.000Z error FORGED-NAME";
+    json r = c.request({{"type", "hello"}, {"protocol", 1}, {"client", name}});
     ASSERT_EQ(r.value("type", ""), "hello") << r;
     r = c.request({{"type", "load_weather"}, {"path", "/nowhere.skywx\n2026-06-21T12:00:00.000Z error FORGED-PATH"}});
     ASSERT_EQ(r.value("type", ""), "ok") << r;
