@@ -57,13 +57,11 @@ if(TARGET sky-service-bench)
              --layers display,sky,clouds,depth)
     set_tests_properties(bench.service_layers PROPERTIES TIMEOUT 180)
     # Layers travel in shared memory only; a malformed size is a usage error that names the argument.
-    # Neither starts a daemon.
+    # Neither starts a daemon. (Not labelled cpu: ./sky test's sanitizer build does not build the bench.)
     add_test(NAME bench.service_layers_shm_only COMMAND ${SKY_BENCH_EXPECT} 2 "published in shared memory only"
              ${SKY_SERVICE_BENCH_BIN} --scene clear --layers display,depth --transport both)
-    set_tests_properties(bench.service_layers_shm_only PROPERTIES LABELS cpu)
     add_test(NAME bench.service_bad_size COMMAND ${SKY_BENCH_EXPECT} 2 "--size 1920by1080: expected WIDTHxHEIGHT"
              ${SKY_SERVICE_BENCH_BIN} --size 1920by1080)
-    set_tests_properties(bench.service_bad_size PROPERTIES LABELS cpu)
     # A daemon that cannot start: the message shows the end of its log ("  | " lines), which names the device.
     add_test(NAME bench.service_daemon_fails COMMAND ${SKY_BENCH_EXPECT} 1
              "^  \\| .*no-such-gpu: no such device"
@@ -71,5 +69,4 @@ if(TARGET sky-service-bench)
     set_tests_properties(bench.service_daemon_fails PROPERTIES TIMEOUT 120)
     add_test(NAME bench.service_bad_transport COMMAND ${SKY_BENCH_EXPECT} 2 "transport"
              ${SKY_SERVICE_BENCH_BIN} --transport pigeon)
-    set_tests_properties(bench.service_bad_transport PROPERTIES LABELS cpu)
 endif()
