@@ -17,7 +17,9 @@ glm::dvec3 compositeOverScene(const glm::dvec3& sky, const glm::dvec4& clouds, d
     const double alpha = std::clamp(clouds.a, 0.0, 1.0);
     if (!scene.hit)
         return sky * (1.0 - alpha) + cloudRgb;
-    if (alpha <= 0.0 || cloudDepthM <= 0.0 || scene.distanceM < cloudDepthM)
+    // A cloud without a depth (a reprojected pixel filled from fresh neighbours that saw no cloud) is put in
+    // front: dropping it cut dark notches into cloud edges over the terrain.
+    if (alpha <= 0.0 || (cloudDepthM > 0.0 && scene.distanceM < cloudDepthM))
         return scene.radiance;
     return scene.radiance * (1.0 - alpha) + cloudRgb;
 }

@@ -28,7 +28,8 @@ struct SceneSample
  * One pixel's linear colour from the layers and the scene:
  *   no scene:                                   sky * (1 - a) + clouds.rgb
  *   scene nearer than the cloud, or no cloud:   scene
- *   scene behind the cloud:                     scene * (1 - a) + clouds.rgb
+ *   scene behind the cloud, or a cloud (a > 0)
+ *   whose depth is unknown (0):                 scene * (1 - a) + clouds.rgb
  *
  * @param[in] sky the sky layer (linear).
  * @param[in] clouds the clouds layer (premultiplied linear rgb, alpha).

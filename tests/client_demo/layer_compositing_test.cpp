@@ -133,6 +133,9 @@ TEST(ClientDemoLayers, PixelRulesOfDepthCompositing)
     EXPECT_EQ(compositeOverScene(kSky, deck, 5000.0, peak), peak.radiance);     // in front of the deck
     EXPECT_EQ(compositeOverScene(kSky, deck, 5000.0, valley), glm::dvec3(0.9));  // under it: hidden
     EXPECT_EQ(compositeOverScene(kSky, glm::dvec4(0.0), 0.0, valley), valley.radiance);  // no cloud
+    // A cloud whose depth is unknown (0) stays over the scene instead of vanishing behind it.
+    const glm::dvec4 halfCloud(0.2, 0.2, 0.2, 0.5);
+    EXPECT_EQ(compositeOverScene(kSky, halfCloud, 0.0, valley), valley.radiance * 0.5 + glm::dvec3(0.2));
     const glm::dvec4 thin(0.36, 0.36, 0.36, 0.4);                                     // premultiplied, alpha 0.4
     const glm::dvec3 blended = compositeOverScene(kSky, thin, 5000.0, valley);
     for (int k = 0; k < 3; ++k)
