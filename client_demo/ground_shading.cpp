@@ -77,7 +77,7 @@ bool intersectGround(const GroundCamera& camera, const glm::dvec3& dirEnu, Groun
     if (camera.altitudeM <= 0.0 || dirEnu.z >= 0.0)
         return false;
     // |e + t d - c| = R with the centre c straight below the eye: t^2 + 2 t (R + h) mu + (h^2 + 2 h R) = 0.
-    // The constant term is written without cancellation (DESIGN §4).
+    // The constant term is written without cancellation (docs/datums.md).
     const double h = camera.altitudeM;
     const double rPlusH = camera.earthRadiusM + h;
     const double mu = dirEnu.z;

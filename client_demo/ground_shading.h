@@ -55,7 +55,7 @@ struct GroundHit
 
 /**
  * Intersects a view ray with the earth: a sphere of the camera's local radius (the renderer uses the same
- * osculating sphere, DESIGN §4).
+ * osculating sphere, docs/datums.md).
  *
  * @param[in] camera the camera.
  * @param[in] dirEnu unit view direction (ENU).

@@ -3,7 +3,7 @@
 //
 // This is the one type that crosses from weather_ingest/ (which fills it from GRIB2/NetCDF) to
 // skyservice/ (which renders it). It depends on nothing but the standard library, so skyservice
-// never sees ecCodes or netCDF (DESIGN §1).
+// never sees ecCodes or netCDF (OVERVIEW.md).
 //
 // Conventions:
 //  - Grid: cell (iLat, iLon) is at latitude lat0Deg + iLat*dLatDeg, longitude lon0Deg + iLon*dLonDeg
@@ -34,7 +34,7 @@ namespace sky
 /// Volumetric layers per snapshot; equals MAX_CLOUD_LAYERS in shaders/shared/bindings.h.
 inline constexpr int kMaxCloudLayers = 4;
 
-/// WMO cloud genera, numbered as CIGI does (DESIGN §3).
+/// WMO cloud genera, numbered as CIGI does (docs/model.md).
 enum class CloudType : uint8_t
 {
     None = 0,

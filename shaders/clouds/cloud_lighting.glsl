@@ -201,7 +201,7 @@ const int MARCH_CONE = 3;     // the light cone of a lit view sample
 // March from tEnter to tExit: cheap samples with double steps until a cloud is hit (jumping over
 // stretches the weather's column bounds show empty), full samples inside, back to cheap after 6 empty
 // full samples; step length grows with distance; blue-noise start offset; stop when the transmittance
-// falls below 0.01 (DESIGN §3 "March").
+// falls below 0.01 (docs/model.md).
 // Every iteration takes exactly one density lookup, whichever part of the march it serves (a state:
 // search, full view sample, surface bisection, light cone). The 32 rays of a GPU subgroup are in
 // different parts at once; written as nested loops, the subgroup ran each part's lookups one after the
@@ -236,7 +236,7 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
     float recheckT = tEnter;
     bool outsideLayers = false;
     // MARCH_FULL: the empty full samples in a row; MARCH_BISECT: the halvings left (one variable: each
-    // variable carried through the loop holds a register all the way: BENCHMARKS.md, tenth session).
+    // variable carried through the loop holds a register all the way: BENCHMARKS.md).
     int stateCount = 0;
     // The budget counts full samples; cheap samples (no detail, no light march) may take as many again.
     // View samples in the low 16 bits, full samples in the high 16 (one register).
@@ -248,7 +248,7 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
     vec3 lightAtCloud = vec3(-1.0f);  // the key light at the ray's first lit sample; < 0: none yet
     // The lit view sample whose light cone is being marched. During a bisection these three hold the sample
     // at t instead (its density, rain rate and height fraction): the two are never needed at once,
-    // and each variable carried through the loop holds a register all the way (BENCHMARKS.md, tenth session).
+    // and each variable carried through the loop holds a register all the way (BENCHMARKS.md).
     float litSigmaS = 0.0f;
     float litSigmaE = 0.0f;
     float litHeightFraction = 0.0f;
@@ -372,7 +372,7 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             bool firstInCloud = afterEmpty;
             afterEmpty = false;
             litSigmaS = ds.density * frame.cloudLook.x;
-            // Rain makes bases dark: precipitation adds absorption near the base (DESIGN §3).
+            // Rain makes bases dark: precipitation adds absorption near the base (docs/model.md).
             float rainAbsorption = saturate1(ds.rainMmH / 20.0f) * (1.0f - ds.heightFraction) * 1.5f;
             litSigmaE = litSigmaS * (1.0f + rainAbsorption);
             litHeightFraction = ds.heightFraction;

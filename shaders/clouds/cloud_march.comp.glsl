@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Volumetric cloud march (DESIGN §3): one invocation per pixel, front to back through the cloud shell,
+// Volumetric cloud march (docs/model.md): one invocation per pixel, front to back through the cloud shell,
 // cone-sampled key light, multiple-scattering octaves, ambient sky and ground light, then the 2D
 // high-cloud layer. Writes premultiplied cloud radiance + alpha (1 - transmittance) and the
 // transmittance-weighted cloud depth.
@@ -87,7 +87,7 @@ uint marchPixel(ivec2 pixel, ivec2 texel)
     // from a transmittance of 1 whether or not the high cloud lies in front: the high cloud is sampled
     // after it, so that nothing of it is held in registers through the march. With that and fewer variables
     // carried through the march's loop (marchClouds) the NVIDIA compiler gives this shader 80 registers
-    // instead of 123: more rays in flight, full-resolution frames ~20 % faster (BENCHMARKS.md, tenth session).
+    // instead of 123: more rays in flight, full-resolution frames ~20 % faster (BENCHMARKS.md).
     CloudPath clouds = CloudPath(vec3(0.0f), 1.0f, 0.0f, 0.0f);
     uint lookups = 0u;
     float tEnter;

@@ -43,6 +43,6 @@ float highCloudAlpha(vec3 p)
         pattern = n.x * 0.5f + n.y * 0.3f + n.z * 0.2f;
     }
     float density = saturate1(remapValue(pattern, 1.0f - coverage, 1.0f, 0.0f, 1.0f));
-    // Ice cloud: thin (optical depth < ~0.5) with strong forward scattering (DESIGN §3).
+    // Ice cloud: thin (optical depth < ~0.5) with strong forward scattering (docs/model.md).
     return 0.55f * density * smoothstep(0.0f, 0.2f, coverage);
 }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Seeded, tileable cloud noise (DESIGN §3): integer hash, gradient (Perlin) noise, cellular (Worley) noise,
+// Seeded, tileable cloud noise (docs/model.md): integer hash, gradient (Perlin) noise, cellular (Worley) noise,
 // their FBM sums, Schneider's Perlin-Worley, and 2D curl noise; plus the per-texel recipes of the three
 // noise textures, so that the compute passes and the CPU tests run the same code.
 // Include shaders/shared/noise_params.h first.

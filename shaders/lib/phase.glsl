@@ -19,7 +19,7 @@ float phaseHenyeyGreenstein(float g, float nu)
 }
 
 // Two HG lobes: forwardWeight * HG(gForward) + (1 - forwardWeight) * HG(gBack). Mean cosine:
-// forwardWeight * gForward + (1 - forwardWeight) * gBack. DESIGN §3 suggests gForward ~0.8, gBack ~-0.3.
+// forwardWeight * gForward + (1 - forwardWeight) * gBack. The published values are gForward ~0.8, gBack ~-0.3.
 float phaseTwoLobeHG(float gForward, float gBack, float forwardWeight, float nu)
 {
     return mix(phaseHenyeyGreenstein(gBack, nu), phaseHenyeyGreenstein(gForward, nu), forwardWeight);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Ray / spherical-shell intersection around the eye, written so that float32 is enough at earth
-// radius (DESIGN §4). A ray starts at the eye, at distance rc = R + hc from the sphere centre, with
+// radius (docs/datums.md). A ray starts at the eye, at distance rc = R + hc from the sphere centre, with
 // mu = cosine of its zenith angle. The distances t to the sphere of radius R + hs solve
 //   t^2 + 2 rc mu t + c = 0,  c = rc^2 - (R + hs)^2 = (hc - hs)(2R + hc + hs)
 // The product form of c avoids subtracting two ~4e13 numbers, and the roots are taken as q and c/q

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Base cloud-shape noise (DESIGN §3): BASE_NOISE_SIZE^3 rgba8, R = Perlin-Worley, G,B,A = Worley FBM at
+// Base cloud-shape noise (docs/model.md): BASE_NOISE_SIZE^3 rgba8, R = Perlin-Worley, G,B,A = Worley FBM at
 // increasing frequencies. One invocation per texel; the recipe is baseNoiseTexel() in noise.glsl.
 #include "shaders/shared/noise_params.h"
 #include "shaders/lib/noise.glsl"

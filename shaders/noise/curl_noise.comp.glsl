@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// 2D curl noise for turbulence at cloud bases (DESIGN §3): CURL_NOISE_SIZE^2 rgba16f, xy = divergence-free
+// 2D curl noise for turbulence at cloud bases (docs/model.md): CURL_NOISE_SIZE^2 rgba16f, xy = divergence-free
 // curl vector in about [-1, 1], zw = 0, tileable. The recipe is curlNoiseTexel() in noise.glsl.
 #include "shaders/shared/noise_params.h"
 #include "shaders/lib/noise.glsl"

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Detail erosion noise (DESIGN §3): DETAIL_NOISE_SIZE^3 rgba8, R,G,B = Worley FBM at increasing
+// Detail erosion noise (docs/model.md): DETAIL_NOISE_SIZE^3 rgba8, R,G,B = Worley FBM at increasing
 // frequencies, A = their FBM. One invocation per texel; the recipe is detailNoiseTexel() in noise.glsl.
 #include "shaders/shared/noise_params.h"
 #include "shaders/lib/noise.glsl"

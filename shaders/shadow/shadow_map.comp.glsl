@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Cloud shadow map (DESIGN §3): for each texel, a ground point on the eye-centred azimuthal equidistant
+// Cloud shadow map (docs/model.md): for each texel, a ground point on the eye-centred azimuthal equidistant
 // grid (shaders/shared/shadow_map_params.h), the key-light transmittance through every volumetric layer
 // (Beer's law over a fixed number of density samples along the light ray) and through the cirrus layer
 // (its alpha where the light ray crosses its sphere). The density is the view's (cloud_density.glsl,

@@ -4,7 +4,7 @@
 #define SKY_SHARED_BINDINGS_H
 #include "shaders/shared/prelude.h"
 
-// Volumetric layers per weather window: DESIGN §3 asks for up to 4 (low, middle, convective, spare).
+// Volumetric layers per weather window: up to 4 (low, middle, convective, spare; docs/model.md).
 #define MAX_CLOUD_LAYERS 4
 
 // 8x8 = 64 invocations: a multiple of both NVIDIA's 32-wide warps and lavapipe's 8-wide SIMD.
@@ -19,7 +19,7 @@
 // 7.4 against 8.7 ms).
 #define RECONSTRUCT_QUAD_PX 1
 
-// Noise texture sizes (DESIGN §3: Perlin-Worley 128^3 RGBA8, Worley 32^3, 2D curl noise).
+// Noise texture sizes (docs/model.md: Perlin-Worley 128^3 RGBA8, Worley 32^3, 2D curl noise).
 #define BASE_NOISE_SIZE 128
 #define DETAIL_NOISE_SIZE 32
 #define CURL_NOISE_SIZE 128

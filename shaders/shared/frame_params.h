@@ -3,7 +3,7 @@
 //
 // Frames of reference: the GPU works in the eye's local east-north-up frame (metres, origin at the
 // eye, z = ellipsoid normal at the eye). The earth around the eye is the osculating sphere of radius
-// earth.x whose centre is at (0, 0, -earth.y) (DESIGN §4: no raw ECEF in float). Noise is looked up in
+// earth.x whose centre is at (0, 0, -earth.y) (docs/datums.md: no raw ECEF in float). Noise is looked up in
 // earth-fixed axes so that clouds do not swim when the camera moves: noisePos = enuToEcef * p + layer
 // offset, where the offsets (eye ECEF minus wind drift, modulo the noise period) are computed in
 // double on the CPU.
@@ -45,7 +45,7 @@ struct FrameParams
     uvec4 march;         // x: max view steps; y: light samples (cone); z: beyond this distance (m) the cone's
                          // detailed near samples are taken as one (0: never; coneNearMergeBeyondM); w: unused
     // Temporal reprojection (skyservice/render/reprojection.h). The previous camera is given in the
-    // current eye's ENU frame, computed in double on the CPU (DESIGN §4).
+    // current eye's ENU frame, computed in double on the CPU (docs/datums.md).
     // reprojection x: block size (1: full resolution, 4: one pixel of each 4x4 block marched);
     // yz: marched position in the block; w: 1 when the history images hold the previous frame
     uvec4 reprojection;

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The order in which the cloud march's workgroup rows run, and what each row cost (DESIGN §3 "March").
+// The order in which the cloud march's workgroup rows run, and what each row cost (docs/model.md).
 //
 // Why: in a reprojected frame the GPU holds most of the march's workgroups at once, and the frame ends
 // when the last of them does. The costly rays (the horizon band, a Cb tower, a deck seen edge-on) take
-// 5-7x the lookups of the median ray (BENCHMARKS.md, seventh session); launched last, they ran after
+// 5-7x the lookups of the median ray (BENCHMARKS.md); launched last, they ran after
 // the cheap rows instead of alongside them. So each frame the march counts the density
 // lookups of every workgroup row, and the next frame launches the rows costliest first
 // (skyservice/render/march_order.h). On lavapipe, which hands each thread a contiguous range of

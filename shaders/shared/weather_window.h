@@ -42,7 +42,7 @@
 // Coverage below which a layer draws nothing (cloudDensity skips it; column_bounds.h counts from it).
 #define CLOUD_COVERAGE_MIN 0.01f
 
-// CIGI / WMO genera (DESIGN §3).
+// CIGI / WMO genera (docs/model.md).
 #define CLOUD_TYPE_NONE 0
 #define CLOUD_TYPE_ALTOCUMULUS 1
 #define CLOUD_TYPE_ALTOSTRATUS 2

@@ -281,7 +281,7 @@ int runShowcaseCommand(const ShowcaseOptions& options)
         request.width = options.width;
         request.height = options.height;
         request.unixTimeS = view.unixTimeS;
-        // Some views also write the geo-referenced cloud shadow map (DESIGN §3), 150 km wide.
+        // Some views also write the geo-referenced cloud shadow map (docs/model.md), 150 km wide.
         request.shadowMap = view.shadowMapSize > 0;
         request.shadowMapSize = view.shadowMapSize > 0 ? view.shadowMapSize : request.shadowMapSize;
         request.shadowMapExtentM = 150000.0;

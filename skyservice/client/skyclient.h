@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* libskyclient: the C API an image generator uses to drive the sky service and take its frames and
- * cloud shadow maps (DESIGN §5). Usable from C and C++; links nothing but libc (the Vulkan import
+ * cloud shadow maps (skyservice/ipc/PROTOCOL.md). Usable from C and C++; links nothing but libc (the Vulkan import
  * helpers are in skyclient_vulkan.h).
  *
  *   SkyClient* c;

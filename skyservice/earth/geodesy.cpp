@@ -18,7 +18,7 @@ namespace
 using GeographicLib::Math;
 
 // Eye altitudes accepted: from below the Dead Sea shore to the edge of the mesosphere's lower part,
-// where our atmosphere model still holds (DESIGN §5 names no limits; these are ours).
+// where our atmosphere model still holds (skyservice/ipc/PROTOCOL.md names no limits; these are ours).
 constexpr double kMinEyeAltitudeM = -500.0;
 constexpr double kMaxEyeAltitudeM = 100000.0;
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The eye on the WGS84 ellipsoid: its pose, its local east-north-up frame, and the osculating sphere
-// that the shaders use in place of the ellipsoid near the eye (DESIGN §4).
+// that the shaders use in place of the ellipsoid near the eye (docs/datums.md).
 //
 // Everything here is double and goes through GeographicLib (Geocentric, LocalCartesian); WGS84
 // constants come only from GeographicLib::Constants (STYLE §10).
@@ -15,7 +15,7 @@
 //   Gaussian sphere, R = sqrt(M N)             0.66 m   10.6 m    42 m      129 m    (worst at the equator)
 //   normal-section sphere, R(azimuth)          0.005 m  0.33 m    2.6 m     14 m     (worst near 45 N/S)
 //
-// DESIGN §4 allows 1% of a layer's thickness: 8 m for an 800 m stratocumulus deck. The Gaussian
+// docs/datums.md allows 1% of a layer's thickness: 8 m for an 800 m stratocumulus deck. The Gaussian
 // sphere meets that to about 170 km; the normal-section sphere (one radius per ray, since a ray's
 // azimuth is fixed: normalSectionRadiusM) meets it to about 550 km, and for layers thicker than
 // 1.4 km to the 700 km horizon of a cruising aircraft.

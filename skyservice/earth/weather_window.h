@@ -2,7 +2,7 @@
 // The camera-centred weather window: a WeatherSnapshot resampled onto the eye's azimuthal equidistant
 // grid, in the texel layout of shaders/shared/weather_window.h (uploaded as one RGBA16F 2D array texture: render/window_provider.h).
 //
-// Sampling rules (DESIGN §1 "LocalWeather"):
+// Sampling rules (OVERVIEW.md):
 //  - continuous fields bilinear on the lat/lon grid; cloud type from the nearest cell;
 //  - a grid whose nLon * dLonDeg is 360 wraps in longitude (any longitude convention) and is clamped
 //    at the poles; outside a regional grid the coverage is 0 and the other fields take the value at

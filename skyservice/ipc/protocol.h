@@ -29,7 +29,7 @@ enum class RequestType
     WriteFiles,
 };
 
-/// A view change: only the fields the client sent are set (DESIGN §5 names). An asymmetric frustum's
+/// A view change: only the fields the client sent are set (skyservice/ipc/PROTOCOL.md names). An asymmetric frustum's
 /// half-angles (left, right, up, down) come all four together and never with fov.
 struct ViewUpdate
 {

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The shared-memory frame ring (DESIGN §5 "Frame sharing" (1)): the byte layout that the service writes
+/* The shared-memory frame ring (skyservice/ipc/PROTOCOL.md): the byte layout that the service writes
  * and libskyclient reads. Plain C so that C clients can include it; every field has a fixed size and the
  * structs have no implicit padding (static_asserts in skyservice/ipc/shm_ring.cpp).
  *
@@ -57,7 +57,7 @@ extern "C" {
 #define SKY_LAYER_DEPTH 3u
 #define SKY_LAYER_COUNT 4u
 
-/* The view a frame was rendered for. Names and units as in DESIGN §5 (CLI, socket API, sidecar JSON).
+/* The view a frame was rendered for. Names and units as in skyservice/ipc/PROTOCOL.md (CLI, socket API, sidecar JSON).
  * The frustum is either symmetric (asymmetric = 0: fov_deg vertical, the horizontal from the image's
  * aspect) or off-centre, as the channels of a display wall (asymmetric = 1: the angles from the view
  * axis to the left, right, upper and lower image edges, each in (-85, 85) degrees, positive outwards,

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Atomic file replacement (DESIGN §5 "written atomically"): write to a temporary file in the same
+// Atomic file replacement (skyservice/ipc/PROTOCOL.md): write to a temporary file in the same
 // folder, fsync it, rename it over the destination, then fsync the folder. A reader therefore sees
 // either the old file or the complete new one, never a partial file; after a failure neither the
 // destination nor any temporary file is left changed or behind.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Image and sidecar files for the file output (DESIGN §5 "Files"): PNG (8-bit sRGB RGBA, libpng),
+// Image and sidecar files for the file output (skyservice/ipc/PROTOCOL.md): PNG (8-bit sRGB RGBA, libpng),
 // OpenEXR (half and float channels, OpenEXR 3.1 C++ API) and JSON (nlohmann). Every writer is atomic
 // (skyservice/output/atomic_file.h): a reader never sees a partial file. Readers are for tests and
 // tools. No function throws; errors name the file.
@@ -76,7 +76,7 @@ struct ExrChannel
  * @param[in] stringAttributes extra header attributes (name, value), e.g. the view as JSON text.
  * @return true on success.
  *
- * Usual channel set (DESIGN §5): R, G, B (premultiplied cloud colour) and A (1 - transmittance) as
+ * Usual channel set (skyservice/ipc/PROTOCOL.md): R, G, B (premultiplied cloud colour) and A (1 - transmittance) as
  * half; Z (transmittance-weighted cloud depth, meters) as float; sky.R, sky.G, sky.B (final linear
  * composite) as half.
  **********************************************************************/

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Zero-copy frame sharing through exported Vulkan memory (DESIGN §5 "Frame sharing" (2)): a ring of
+// Zero-copy frame sharing through exported Vulkan memory (skyservice/ipc/PROTOCOL.md): a ring of
 // images whose VkDeviceMemory is exported as opaque fds (VK_KHR_external_memory_fd), that a client
 // imports into its own VkDevice on the same physical device (skyservice/client/vulkan/skyclient_vulkan.h).
 //

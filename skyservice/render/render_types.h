@@ -14,7 +14,7 @@
 namespace sky
 {
 
-/// Knobs of the cloud model and the march. Defaults are the published constants (DESIGN §3), tuned.
+/// Knobs of the cloud model and the march. Defaults are the published constants (docs/model.md), tuned.
 struct QualitySettings
 {
     uint32_t maxViewSteps = 160;     ///< view samples per ray at most
@@ -28,8 +28,8 @@ struct QualitySettings
     /// its far (cheap) samples takes those instead of marching its own; its near, detailed samples stay
     /// its own (0: every cone marched in full). The next lit sample in a cloud is tens of metres away, the
     /// far samples 300 m-4.4 km. H200, 1080p reprojected: -21..-28 % in the volumetric scenes at 400 m;
-    /// the 320x180 contact sheet of the bench scenes 52.5 dB of 0 (the Cb tower 47 dB). BENCHMARKS.md,
-    /// eighth session; tests/gpu/test_cone_tail.cpp.
+    /// the 320x180 contact sheet of the bench scenes 52.5 dB of 0 (the Cb tower 47 dB). BENCHMARKS.md;
+    /// tests/gpu/test_cone_tail.cpp.
     double coneTailReuseM = 400.0;
     /// ...and only lit samples farther than this from the eye (m) do: nearer, the reused tails of points
     /// nearer the cloud's surface brighten the cloud (a sunset deck 1.6/255 on average at 200 m, light
@@ -38,7 +38,7 @@ struct QualitySettings
     /// Deep lit samples (behind a view transmittance below detailMinTransmittance) within this distance
     /// (m) of the last cone marched take its light and march none (0: each marches its own). What they
     /// add reaches the eye through less than a tenth. H200, 1080p: inside-cloud -10 % reprojected, -13 %
-    /// full, the deck -6 % full; the 320x180 contact sheet 59.9 dB of 0 (BENCHMARKS.md, eighth session).
+    /// full, the deck -6 % full; the 320x180 contact sheet 59.9 dB of 0 (BENCHMARKS.md).
     double deepLightReuseM = 400.0;
     /// Beyond this distance (m) a light cone's detailed near samples (fullConeSamples) are taken as one
     /// sample over their length (0: never): there the detail erosion has faded out (detailFadeEndM) and a
@@ -46,7 +46,7 @@ struct QualitySettings
     /// rays are far ones (H200, 1080p reprojected: sunset -10 %, FL350 -7 %). The single sample sees less
     /// of a cloud's thin sunlit skin, so the clouds it lights come out brighter (+1.2 % in the test); a
     /// nearer limit changes more of the picture (the 320x180 contact sheet of the bench scenes against 0:
-    /// 46.2 dB at 25 km, 51.4 dB at 40 km; FL350's deck 39.3 / 43.9 dB). BENCHMARKS.md, ninth session;
+    /// 46.2 dB at 25 km, 51.4 dB at 40 km; FL350's deck 39.3 / 43.9 dB). BENCHMARKS.md;
     /// tests/gpu/test_cone_tail.cpp.
     double coneNearMergeBeyondM = 40000.0;
     /// Texel size of the light volume on the ground (m; LIGHT_VOLUME_SIZE texels a side); 0: no volume,
@@ -64,7 +64,7 @@ struct QualitySettings
     /// (0: never): there little of the sample reaches the eye. H200, 1080p reprojected: -4..-7 % per frame
     /// in the volumetric scenes at 0.1 (-7..-10 % at 0.2); pictures 47-56 dB of those without it at 0.1
     /// (41-50 dB at 0.2), tests/gpu/test_render.cpp. (Measured with the march before its bisection fix,
-    /// BENCHMARKS.md fifth session.)
+    /// BENCHMARKS.md.)
     double detailMinTransmittance = 0.1;
     /// Those deep view samples also step this many times further (1: the same step). H200, 1080p
     /// reprojected: -11..-17 % per frame at 2; the 320x180 contact sheet of the bench scenes 67 dB of 1.
@@ -109,11 +109,11 @@ struct QualitySettings
     /// render). In a broken or scattered layer it is always 1. In fog a pixel's radiance comes from the
     /// first ~100 m of cloud, which moves little per frame: turning at 60 deg/s at 250 m/s inside an
     /// overcast deck (tests/gpu/test_flight_path.cpp) block 2 keeps the display image 50+ dB of the
-    /// full render. H200, 1080p: inside-cloud 0.748 -> 0.277 ms (BENCHMARKS.md, sixth session).
+    /// full render. H200, 1080p: inside-cloud 0.748 -> 0.277 ms (BENCHMARKS.md).
     uint32_t insideCloudBlockPx = 2;
     /// The march launches its workgroup rows costliest first, by the lookups the previous frame of the
     /// same shape counted (shaders/shared/march_order.h); false: always the interleaved order (A/B). It
-    /// changes no pixel. H200, 1080p: see BENCHMARKS.md, seventh session.
+    /// changes no pixel. H200, 1080p: see BENCHMARKS.md.
     bool costOrderedMarch = true;
     bool highCloud = true;               ///< cirrus layer on
     uint32_t accumulationFrames = 1;     ///< frames averaged, each with new march jitter and sub-pixel offset

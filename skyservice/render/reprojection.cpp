@@ -129,7 +129,7 @@ void fillReprojectionParams(FrameParams& frame, const ReprojectionHistory& histo
     frame.previousEye = vec4(0.0f);
     if (!useHistory)
         return;
-    // Previous axes and eye in the current ENU frame, in double (DESIGN §4): ENU(prev) -> ECEF -> ENU(now).
+    // Previous axes and eye in the current ENU frame, in double (docs/datums.md): ENU(prev) -> ECEF -> ENU(now).
     const CameraFrame& prev = history.lastCamera;
     glm::dmat3 ecefToEnu = glm::transpose(camera.enuToEcef);
     glm::dmat3 prevToNow = ecefToEnu * prev.enuToEcef;

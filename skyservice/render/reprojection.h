@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-// Temporal reprojection of the cloud image (DESIGN §3, issue 5): the CPU side.
+// Temporal reprojection of the cloud image (docs/model.md, issue 5): the CPU side.
 //
 // Each reprojected frame marches one pixel of every 4x4 block, at the block position that
 // reprojectionPhase(frameIndex) names (a Bayer order: 16 consecutive frames cover all 16 positions).
 // shaders/clouds/reconstruct.comp.glsl builds the full image from those fresh pixels and the previous
 // frame's image. This file keeps what the renderer remembers between frames, decides when that history
-// must be dropped, and fills the reprojection terms of FrameParams in double precision (DESIGN §4):
+// must be dropped, and fills the reprojection terms of FrameParams in double precision (docs/datums.md):
 // the previous camera's axes and eye position are expressed in the current eye's ENU frame before
 // they are rounded to float, so the GPU never sees an earth-centred coordinate.
 #pragma once

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The geo-referenced cloud shadow map (DESIGN §3): key-light transmittance through every cloud layer
+// The geo-referenced cloud shadow map (docs/model.md): key-light transmittance through every cloud layer
 // (volumetric and cirrus) on a square grid of ground points centred on the eye, plus the metadata an
 // image generator needs to drape it on its terrain.
 //

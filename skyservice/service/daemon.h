@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// `skyservice` without a subcommand: the long-running service (DESIGN §5). Wires the parts together:
+// `skyservice` without a subcommand: the long-running service (skyservice/ipc/PROTOCOL.md). Wires the parts together:
 // config -> renderer -> shared-memory ring -> control socket, then the threads (signals, weather
 // loader and watcher, render loop) until SIGTERM/SIGINT. SIGHUP reloads the config file.
 #pragma once

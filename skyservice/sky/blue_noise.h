@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Tileable blue-noise dither mask for the cloud march's start offset (DESIGN §3 "blue-noise start offset").
+// Tileable blue-noise dither mask for the cloud march's start offset (docs/model.md "blue-noise start offset").
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Headless Vulkan compute context: instance, debug messenger, one device with a compute queue.
-// No surface, no window system (DESIGN §1; windows live only in client_demo/).
+// No surface, no window system (OVERVIEW.md; windows live only in client_demo/).
 #pragma once
 
 #include "skyservice/vk/check.h"

@@ -117,7 +117,7 @@ TEST_F(Georef, CellAppearsInItsGeodesicDirectionAcrossTheAntimeridian)
 }
 
 // ---------------------------------------------------------------------------------------------------
-// The real GFS sample (DESIGN §7): converted here with sky_ingest, places chosen from the data.
+// The real GFS sample (README.md): converted here with sky_ingest, places chosen from the data.
 
 #ifdef SKY_HAVE_INGEST
 namespace

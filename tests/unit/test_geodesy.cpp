@@ -219,7 +219,7 @@ TEST(Geodesy, HorizonDistanceIsTangent)
     EXPECT_GT(d, 370000.0);  // about 374 km at 11 km: DESIGN's ~700 km needs cloud tops, not ground
 }
 
-// The error budget of DESIGN §4: layer shells are spheres around the eye, the truth is the height
+// The error budget of docs/datums.md: layer shells are spheres around the eye, the truth is the height
 // above the ellipsoid. For points at a given geodesic distance from the eye (every 15 degrees of
 // azimuth), at cloud heights, this measures the worst |sphere altitude - ellipsoidal height| for the
 // Gaussian sphere (one radius for all directions) and for the normal-section sphere (one radius per

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* skyclient_vulkan: imports the sky service's exported frame images (DESIGN §5 "Frame sharing" (2)) into
+/* skyclient_vulkan: imports the sky service's exported frame images (skyservice/ipc/PROTOCOL.md) into
  * the caller's own VkDevice. C API; links only Vulkan (libvulkan) and libc.
  *
  *   SkyExportedFrames frames;                       // from sky_client_subscribe_vulkan (skyclient.h)
