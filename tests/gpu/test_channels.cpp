@@ -13,7 +13,7 @@
 // noisy statistic (72 rows; ~30% from pose to pose), hence the tolerance S <= 1.5 I, or 3.5 % of the
 // peak where the picture is so smooth that 1.5 I is less, for full renders (nothing tied to the screen)
 // and for the reprojected channels after flying the same path (still, cruise, turn), each channel on its
-// own history as on its own machine. (Before the march's bisection fix, fifth session, I was 0.031-0.033
+// own history as on its own machine. (Before the march's bisection fix, I was 0.031-0.033
 // and the tolerance 0.047-0.049; the smoother clouds since give I 0.0055-0.008 and S <= 0.030, the 60
 // deg/s turn's reprojected seam, where the channel turning away from the seam has no history at it.)
 // lavapipe, validation on, 128x72, test quality, above a stratocumulus deck (the deck below the

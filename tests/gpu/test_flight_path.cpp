@@ -50,7 +50,7 @@ ViewRequest aboveDeck()
 // 21.5-23.4 dB in the turns); the edge bands >= 16 dB (cloud image; measured >= 18.9 dB). In a turn the
 // band the view turns toward has no history or the oldest: there it must also be at most 5 dB below
 // the whole frame (measured <= 4.5 dB): a smear, history stretched in from the border, shows there first.
-// (Before the march's bisection fix, fifth session, the 90 deg/s turn measured 20.1 dB whole, 17.2 dB at
+// (Before the march's bisection fix, the 90 deg/s turn measured 20.1 dB whole, 17.2 dB at
 // the edge, a 2.9 dB deficit: now both are higher, 23.1 and 18.9, the whole frame more.)
 void expectGates(const FlightStats& s, bool turning = false)
 {

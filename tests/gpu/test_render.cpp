@@ -134,7 +134,7 @@ TEST_F(GpuRender, SunSideOfACumulusIsBrighterThanItsShadowSide)
     // Measured 0.275 / 0.204 (1.35x) as shipped (the cell is 12 km away: the light volume's far cascade
     // lights it), 0.280 / 0.201 (1.39x) without the cascade, 0.266 / 0.216 (1.23x: fails) with a cascade of
     // 640 m texels; ~0.31 / 0.16 (1.9x) with 5x finer cloud steps, 0.292 / 0.194 (1.50x) with the march
-    // before the fifth session's bisection fix.
+    // before the march's bisection fix.
     std::printf("opaque luminance: sunlit side %.4f, shadow side %.4f\n", a.meanOpaqueLuminance, b.meanOpaqueLuminance);
     // Opaque pixels only: thin backlit edges are rightly bright (forward scattering, silver lining).
     EXPECT_GT(a.meanOpaqueLuminance, 1.3 * b.meanOpaqueLuminance)
