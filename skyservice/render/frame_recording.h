@@ -40,7 +40,8 @@ struct FrameOutputs
 VkDeviceSize frameReadbackBytes(const Renderer& r, const ViewRequest& request, const QualitySettings& quality);
 
 /// Records one frame into `frame.cmd` (`params`: what its frame uniforms hold): sky-view LUT, light volume,
-/// cloud march, reconstruct, composite, and the copies of the asked-for images. Sets facts.marchRowOrder.
+/// cloud march, reconstruct, composite; queues the readback of the asked-for images (recordReadbacks then
+/// records the copies after the frame's last pass). Sets facts.marchRowOrder.
 void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, const CameraFrame& camera,
                  const SunMoon& sunMoon, const FrameInputs& in, const FrameParams& params, FrameReadbackPlan& plan,
                  RenderResult& facts);
