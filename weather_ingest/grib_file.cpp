@@ -82,6 +82,11 @@ public:
                               std::string("ecCodes: ") + codes_get_error_message(err));
     }
 
+    [[noreturn]] void refuse(const char* key, const std::string& why) const
+    {
+        throw IngestError(IngestErrorKind::Corrupt, file_, messageLocation(number_), key, why);
+    }
+
 private:
     grib_handle* h_;
     const std::string& file_;
@@ -134,6 +139,20 @@ std::string describeGrid(const KeyReader& k, const std::string& gridType)
     return d;
 }
 
+// ecCodes 2.28 loops forever deriving validityDate from a GRIB2 time unit outside WMO Code Table 4.4
+// (255, "missing", found by the fuzzer): such a message is refused before any step or date key is read.
+void refuseUnknownTimeUnits(const KeyReader& k)
+{
+    for (const char* key : {"indicatorOfUnitOfTimeRange", "indicatorOfUnitForTimeRange"}) {
+        if (!k.has(key))
+            continue;
+        const long unit = k.getLong(key);
+        const bool inCodeTable = (unit >= 0 && unit <= 7) || (unit >= 10 && unit <= 13);
+        if (!inCodeTable)
+            k.refuse(key, "time unit " + std::to_string(unit) + " is not in WMO Code Table 4.4");
+    }
+}
+
 GribMessageInfo readInfo(grib_handle* h, const std::string& file, int number)
 {
     const KeyReader k(h, file, number);
@@ -145,6 +164,7 @@ GribMessageInfo readInfo(grib_handle* h, const std::string& file, int number)
     info.units = k.getString("units");
     info.name = k.getString("name");
     info.gridType = k.getString("gridType");
+    refuseUnknownTimeUnits(k);
     info.level = k.getLong("level", 0);
     info.centre = k.getLong("centre", 0);
     info.stepRange = k.getString("stepRange");

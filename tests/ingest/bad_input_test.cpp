@@ -155,6 +155,20 @@ TEST(BadInput, AbsurdGridSizeIsRefusedBeforeDecoding)
     }
 }
 
+// ecCodes loops forever deriving the validity date from a time unit outside its code table; the reader must
+// refuse the message first (a fuzzer found it: without the check this test never ends).
+TEST(BadInput, UnknownTimeUnitIsRefusedNamingTheKey)
+{
+    std::vector<GribOutField> f = test::gfsLikeFields(test::smallGlobalGrid());
+    f[0].keys.emplace_back("forecastTime", "5");
+    f[0].keys.emplace_back("indicatorOfUnitOfTimeRange", "255");
+    const Outcome o = convert(writeFixture("time_unit_255.grib2", f));
+    ASSERT_TRUE(o.failed);
+    EXPECT_EQ(o.kind, IngestErrorKind::Corrupt);
+    EXPECT_NE(o.message.find("indicatorOfUnitOfTimeRange"), std::string::npos) << o.message;
+    EXPECT_NE(o.message.find("255"), std::string::npos) << o.message;
+}
+
 TEST(BadInput, FieldsOnDifferentGridsCombineAndTheFinerWins)
 {
     std::vector<GribOutField> f = test::gfsLikeFields(test::smallGlobalGrid());
