@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -43,6 +44,8 @@ using Clock = std::chrono::steady_clock;
 
 /// Replies longer than this are not ours to buffer (the service's lines are ≤ 64 KiB by protocol).
 constexpr size_t kMaxReplyBytes = 1 << 20;
+// Longest sleep on the ring's futex in sky_client_wait_frame before the socket is looked at again.
+constexpr int kWaitSliceMs = 20;
 
 /// Why the last sky_client_connect of this thread failed (there is no client to hold it).
 thread_local std::string tConnectError;
@@ -469,8 +472,20 @@ SkyResult sky_client_wait_frame(SkyClient* client, uint64_t after_frame_id, int 
         if (timeout_ms >= 0 && Clock::now() >= deadline)
             return fail(client, SKY_ERR_TIMEOUT, "no frame after " + std::to_string(after_frame_id) + " within " +
                                                      std::to_string(timeout_ms) + " ms");
-        // The short sleep is a poll on the socket: a service that goes away ends the wait at once.
-        if (client->fd >= 0)
+        // The service wakes the ring's futex on every publish: sleep on it, in slices that look at the
+        // socket between them, so that a service that goes away ends the wait within a slice. An older
+        // service without the futex: a 1 ms poll on the socket.
+        if (client->ring.canWaitForPublish())
+        {
+            const int sliceMs =
+                timeout_ms < 0 ? kWaitSliceMs : std::min(kWaitSliceMs, std::max(1, remainingMs(deadline)));
+            if (client->ring.waitForFrameAfter(after_frame_id, sliceMs) > after_frame_id)
+                continue;
+            if (client->fd >= 0)
+                if (SkyResult r = readSome(client, 0); r != SKY_OK)
+                    return r;
+        }
+        else if (client->fd >= 0)
         {
             SkyResult r = readSome(client, 1);
             if (r != SKY_OK)

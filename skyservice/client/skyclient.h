@@ -116,10 +116,11 @@ SkyResult sky_client_subscribe_files(SkyClient* client, const char* dir, uint32_
 /* Shared-memory transport: maps the ring. Call once; after a service restart, reconnect. */
 SkyResult sky_client_subscribe_shm(SkyClient* client);
 /* The same, asking for compositing layers as well: `layers` is a bit set of (1u << SKY_LAYER_*) (the
- * display layer is always published). Frames carry the union of what the service's subscribers ask for;
+ * display layer is always published to shm subscribers). Frames carry the union of what the service's subscribers ask for;
  * a layer costs GPU and copy time only while someone asks for it. May be called again to add layers. */
 SkyResult sky_client_subscribe_shm_layers(SkyClient* client, uint32_t layers);
-/* Waits until a frame newer than after_frame_id is published (timeout_ms < 0: forever). */
+/* Waits until a frame newer than after_frame_id is published (timeout_ms < 0: forever). Sleeps on the
+ * ring's publish futex: it returns as soon as the service publishes, without polling. */
 SkyResult sky_client_wait_frame(SkyClient* client, uint64_t after_frame_id, int timeout_ms);
 /* The newest complete frame, without copying. SKY_ERR_NO_FRAME before the first. */
 SkyResult sky_client_acquire_frame(SkyClient* client, SkyFrame* out_frame);

@@ -20,6 +20,11 @@
  * `sequence` (acquire); odd means "being written, take another"; it reads what it needs and loads
  * `sequence` again: a different value means the writer came round and the read is torn. The writer
  * fills the slots round robin, so a reader has (slot_count - 1) frame intervals to finish a read.
+ * Waiting for a frame: when `features` has SKY_SHM_FEATURE_PUBLISH_FUTEX, the writer adds 1 to
+ * `publish_futex` after every publish and wakes every FUTEX_WAIT on that word (Linux futex on a shared
+ * mapping; a read-only mapping may wait). A reader loads the word, checks latest_frame_id, and only then
+ * waits while the word still holds what it loaded, so no publish is missed; it bounds each wait (e.g.
+ * 20 ms) to notice a writer that died. Without the feature, a reader polls latest_frame_id.
  * Atomic fields are accessed with __atomic_load_n / __atomic_store_n (GCC/Clang builtins, valid in C
  * and C++) because C11 _Atomic and std::atomic do not share a layout guarantee.
  */
@@ -34,6 +39,9 @@ extern "C" {
 
 #define SKY_SHM_MAGIC 0x31304D5246594B53ull /* "SKYFRM01" read as little-endian bytes */
 #define SKY_SHM_VERSION 2u
+
+/* Bits of SkyShmHeader.features. */
+#define SKY_SHM_FEATURE_PUBLISH_FUTEX 1u /* publish_futex counts publishes and wakes its waiters */
 
 /* Pixel formats of SkyShmSlot.format. */
 #define SKY_FORMAT_RGBA8_SRGB 1u      /* tone-mapped display frame, 4 bytes per pixel, alpha 255 */
@@ -115,7 +123,9 @@ typedef struct SkyShmHeader
     uint64_t latest_frame_id;  /* ATOMIC: frame id of the newest complete slot, 0 = none yet */
     uint64_t latest_slot;      /* ATOMIC: index of that slot */
     uint64_t writer_heartbeat_ns; /* ATOMIC: CLOCK_MONOTONIC of the writer's last frame, for liveness */
-    uint64_t reserved[8];
+    uint32_t features;         /* SKY_SHM_FEATURE_* bits the writer provides */
+    uint32_t publish_futex;    /* ATOMIC: publishes so far (wraps); the word readers FUTEX_WAIT on */
+    uint64_t reserved[7];
 } SkyShmHeader;
 
 /* One layer of a slot: width x height pixels (SkyShmSlot.view), row_bytes per row, top row first. */

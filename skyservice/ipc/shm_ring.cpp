@@ -8,11 +8,14 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
-#include <fcntl.h>
 #include <algorithm>
+#include <climits>
+#include <fcntl.h>
+#include <linux/futex.h>
 #include <signal.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
 namespace sky
@@ -32,7 +35,8 @@ static_assert(offsetof(SkyShmHeader, max_width) == 48);
 static_assert(offsetof(SkyShmHeader, latest_frame_id) == 64);
 static_assert(offsetof(SkyShmHeader, latest_slot) == 72);
 static_assert(offsetof(SkyShmHeader, writer_heartbeat_ns) == 80);
-static_assert(offsetof(SkyShmHeader, reserved) == 88);
+static_assert(offsetof(SkyShmHeader, features) == 88 && offsetof(SkyShmHeader, publish_futex) == 92);
+static_assert(offsetof(SkyShmHeader, reserved) == 96);
 static_assert(sizeof(SkyShmLayer) == 24 && offsetof(SkyShmLayer, offset) == 8);
 static_assert(sizeof(SkyShmSlot) ==
               4 * 8 + sizeof(SkyShmView) + 2 * 4 + 4 * 8 + sizeof(SkyShmShadowGeoRef) + 4 * 24 + 4 * 8);
@@ -245,6 +249,8 @@ bool ShmRingWriter::create(const ShmRingConfig& config, std::string& error)
     h.max_height = config.maxHeight;
     h.max_shadow_size = config.maxShadowSize;
     h.writer_pid = uint32_t(::getpid());
+    h.features = SKY_SHM_FEATURE_PUBLISH_FUTEX;
+    slotShadowId_.assign(config.slotCount, 0);
     for (uint32_t i = 0; i < config.slotCount; ++i)
     {
         SkyShmSlot* s = slot(i);
@@ -363,8 +369,11 @@ bool ShmRingWriter::endSlot(const ShmFrame& frame, std::string& error)
             for (uint32_t y = 0; y < frame.height; ++y)
                 std::memcpy(base + layout.imageOffset + y * tightRow, src + y * sourceRow, tightRow);
     }
-    if (shadowBytes)
+    // A reused shadow map is copied into each slot once (the slot's shadow bytes are only ever written here).
+    const bool slotHasShadow = frame.shadowId != 0 && slotShadowId_[index] == frame.shadowId;
+    if (shadowBytes && !slotHasShadow)
         copies_.push_back(CopyJob{base + layout.shadowOffset, frame.shadowTransmittance, size_t(shadowBytes)});
+    slotShadowId_[index] = shadowBytes ? frame.shadowId : 0;
     copier_->run(copies_);
 
     __atomic_store_n(&s->sequence, (seq | 1u) + 1u, __ATOMIC_RELEASE);
@@ -372,6 +381,10 @@ bool ShmRingWriter::endSlot(const ShmFrame& frame, std::string& error)
     __atomic_store_n(&header_->latest_slot, uint64_t(index), __ATOMIC_RELEASE);
     __atomic_store_n(&header_->latest_frame_id, frame.frameId, __ATOMIC_RELEASE);
     __atomic_store_n(&header_->writer_heartbeat_ns, monotonicNs(), __ATOMIC_RELEASE);
+    // After the id: a reader that loaded the old count before checking the id either saw the new id or
+    // finds the count changed when it waits (shm_layout.h). One syscall per frame, waiters or not.
+    __atomic_add_fetch(&header_->publish_futex, 1u, __ATOMIC_SEQ_CST);
+    ::syscall(SYS_futex, &header_->publish_futex, FUTEX_WAKE, INT_MAX, nullptr, nullptr, 0);
     return true;
 }
 
@@ -459,6 +472,30 @@ void ShmRingReader::close()
 uint64_t ShmRingReader::latestFrameId() const
 {
     return header_ ? __atomic_load_n(&header_->latest_frame_id, __ATOMIC_ACQUIRE) : 0;
+}
+
+bool ShmRingReader::canWaitForPublish() const
+{
+    return header_ && (__atomic_load_n(&header_->features, __ATOMIC_RELAXED) & SKY_SHM_FEATURE_PUBLISH_FUTEX) != 0;
+}
+
+uint64_t ShmRingReader::waitForFrameAfter(uint64_t afterFrameId, int timeoutMs) const
+{
+    if (!header_)
+        return 0;
+    const uint32_t published = __atomic_load_n(&header_->publish_futex, __ATOMIC_SEQ_CST);
+    uint64_t latest = latestFrameId();
+    if (latest > afterFrameId || timeoutMs <= 0)
+        return latest;
+    if (!canWaitForPublish())
+    {
+        ::usleep(useconds_t(std::min(timeoutMs, 1) * 1000));
+        return latestFrameId();
+    }
+    timespec timeout{timeoutMs / 1000, long(timeoutMs % 1000) * 1000000L};
+    // EAGAIN (a publish came in between), EINTR and ETIMEDOUT all end the wait: the caller checks the id.
+    ::syscall(SYS_futex, &header_->publish_futex, FUTEX_WAIT, published, &timeout, nullptr, 0);
+    return latestFrameId();
 }
 
 bool ShmRingReader::acquire(ShmFrameView& out) const

@@ -41,6 +41,9 @@ struct ShmFrame
     const void* layers[SKY_LAYER_COUNT] = {};
     const float* shadowTransmittance = nullptr;  ///< null: no shadow map
     SkyShmShadowGeoRef shadow{};                 ///< shadow.size_texels texels per side
+    /// Non-zero: frames with the same id carry the same shadow texels (a reused drawing,
+    /// RenderResult::shadowMapId), so a slot that already holds them is not copied again.
+    uint64_t shadowId = 0;
 };
 
 /// The service's side. Owns the mapping and the name; never waits for a reader.
@@ -87,6 +90,7 @@ private:
     }
     uint64_t totalBytes_ = 0;
     uint32_t openSlot_ = UINT32_MAX;
+    std::vector<uint64_t> slotShadowId_;  ///< ShmFrame::shadowId each slot's shadow texels were copied from
 };
 
 /// A reader's view of one acquired slot. `pixels` and `shadow` point into the mapping.
@@ -116,6 +120,12 @@ public:
     bool valid() const { return header_ != nullptr; }
 
     uint64_t latestFrameId() const;
+    /// True when the writer wakes waiters on each publish (SKY_SHM_FEATURE_PUBLISH_FUTEX).
+    bool canWaitForPublish() const;
+    /// Waits until a frame newer than `afterFrameId` is published, at most timeoutMs (one futex wait;
+    /// spurious wakes return early) and returns the latest frame id. A writer without the futex feature:
+    /// sleeps at most 1 ms instead.
+    uint64_t waitForFrameAfter(uint64_t afterFrameId, int timeoutMs) const;
     /// The newest complete slot; false when none is published yet or the writer is in it (retry), or
     /// when its fields (width, height, row_bytes, offsets, shadow size) do not fit the slot (out.corrupt).
     /// The ring's geometry is the one checked at open(), never read back from the mapping.

@@ -126,6 +126,8 @@ struct QualitySettings
     /// Temporal reprojection (skyservice/render/reprojection.h): march one pixel of every 4x4 block and
     /// reproject the rest from the renderer's previous reprojected frame. accumulationFrames is ignored.
     bool reprojected = false;
+
+    bool operator==(const QualitySettings&) const = default;
 };
 
 /// The images a frame copies back to the host (bits of ViewRequest::readback). What is not asked for
@@ -222,6 +224,10 @@ struct RenderResult
     std::vector<float> shadowOpticalDepth;    ///< cloud optical depth along the light ray (capped at 12)
     nlohmann::json shadowMap;                 ///< metadata: projection, corners, sun, valid time
     ShadowMapReference shadowReference;       ///< the same geo-reference, typed (for the frame ring)
+    /// Which drawing of the shadow map this frame carries: frames whose map would not differ by half a
+    /// texel reuse the last drawing (shadow_map.h) with its metadata; equal ids hold equal texels.
+    uint64_t shadowMapId = 0;
+    bool shadowMapRedrawn = false;            ///< this frame drew its shadow map (false: reused)
 };
 
 }  // namespace sky

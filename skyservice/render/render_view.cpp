@@ -279,11 +279,18 @@ SkyStatus finishView(Renderer& r, FrameTicket& ticket, RenderResult& result, boo
     result.shadowMapSize = ticket.shadow.recorded ? ticket.facts.shadowMapSize : 0;
     result.shadowMap = ticket.shadow.recorded ? std::move(ticket.facts.shadowMap) : nlohmann::json();
     result.shadowReference = ticket.facts.shadowReference;
+    result.shadowMapId = ticket.shadow.recorded ? ticket.facts.shadowMapId : 0;
+    result.shadowMapRedrawn = ticket.shadow.recorded && ticket.shadow.redrawn;
     result.gpuMs.clear();
     collectFrame(r, frame, ticket.request, ticket.reprojected, ticket.lightVolume,
                  copyPixels ? ticket.plan : FrameReadbackPlan{}, result);
     if (ticket.shadow.recorded)
-        collectShadowMap(r, frame, copyPixels ? ticket.shadow : ShadowMapReadback{true, {}, {}}, result);
+    {
+        ShadowMapReadback regions = ticket.shadow;
+        if (!copyPixels)
+            regions.transmittance = regions.detail = ReadbackRegion{};  // the caller reads mappedFrame
+        collectShadowMap(r, frame, regions, result);
+    }
     else
     {
         result.shadowTransmittance.clear();

@@ -8,6 +8,7 @@
 #include <GeographicLib/Geodesic.hpp>
 #include <glm/gtc/packing.hpp>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstring>
 
@@ -31,6 +32,47 @@ nlohmann::json directionJson(const CelestialPosition& body)
 {
     const glm::dvec3& d = body.directionEnu;
     return {{"directionEnu", {d.x, d.y, d.z}}, {"azimuthDeg", body.azimuthDeg}, {"elevationDeg", body.elevationDeg}};
+}
+
+// The highest cloud whose shadow the map holds (anvils and cirrus stay below): its shadow moves the most
+// when the light turns.
+constexpr double kHighestShadowCasterM = 20000.0;
+
+/// Where the shadow of a cloud kHighestShadowCasterM up falls, relative to the point below it (metres, ENU).
+glm::dvec2 shadowOffsetM(const glm::dvec3& lightEnu)
+{
+    return -kHighestShadowCasterM * glm::dvec2(lightEnu.x, lightEnu.y) / std::max(lightEnu.z, 0.05);
+}
+
+ShadowMapDrawing drawingFor(const Renderer& r, const ViewRequest& request, const QualitySettings& quality,
+                            const CameraFrame& camera, const SunMoon& sunMoon)
+{
+    ShadowMapDrawing d;
+    d.valid = true;
+    d.sizeTexels = request.shadowMapSize;
+    d.extentM = request.shadowMapExtentM;
+    d.quality = quality;
+    d.quality.readback = false;
+    d.quality.linearOutput = false;
+    d.weatherVersion = r.weatherVersion;
+    d.window = r.window.get();
+    d.unixTimeS = request.unixTimeS;
+    d.eyeEcefM = camera.eyeEcefM;
+    d.lightIsMoon = moonIsKeyLight(sunMoon);
+    d.lightEnu = d.lightIsMoon ? sunMoon.moon.directionEnu : sunMoon.sun.directionEnu;
+    return d;
+}
+
+/// True when `last` may stand for `next` (ShadowMapDrawing says when).
+bool sameMap(const ShadowMapDrawing& last, const ShadowMapDrawing& next)
+{
+    if (!last.valid || last.sizeTexels != next.sizeTexels || last.extentM != next.extentM ||
+        !(last.quality == next.quality) || last.weatherVersion != next.weatherVersion || last.window != next.window ||
+        last.unixTimeS != next.unixTimeS || last.lightIsMoon != next.lightIsMoon)
+        return false;
+    const double texelM = next.extentM / double(next.sizeTexels);
+    const double shadowShiftM = glm::length(shadowOffsetM(next.lightEnu) - shadowOffsetM(last.lightEnu));
+    return shadowShiftM < 0.5 * texelM && glm::length(next.eyeEcefM - last.eyeEcefM) < next.extentM / 64.0;
 }
 
 SkyStatus ensureShadowImages(Renderer& r, uint32_t size)
@@ -154,9 +196,11 @@ SkyStatus prepareShadowMap(Renderer& r, const ViewRequest& request)
     return request.shadowMap ? ensureShadowImages(r, request.shadowMapSize) : SkyStatus::success();
 }
 
-void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request, const QualitySettings& quality,
-                     const CameraFrame& camera, const SunMoon& sunMoon, ShadowMapReadback& readback,
-                     RenderResult& facts)
+namespace
+{
+
+void drawShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request, const QualitySettings& quality,
+                   const CameraFrame& camera, const SunMoon& sunMoon, ShadowMapDrawing& drawing)
 {
     const uint32_t size = request.shadowMapSize;
     ShadowMapGeometry g;
@@ -180,9 +224,6 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
               DescriptorInfo(r.curlNoise, r.linearRepeat), DescriptorInfo(r.shadowPass.image)});
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsShadowEnd);
-    readback = ShadowMapReadback{};
-    readback.recorded = true;
-    if (quality.readback)
     {
         // The transmittance as the float texels readers want, converted on the GPU: a same-size NEAREST
         // blit of the red channel is an exact half -> float conversion.
@@ -199,14 +240,10 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
                        VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
         transitionImage(cmd, source, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
         transitionImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
-        readback.transmittance = addImageReadback(frame, r.shadowPass.transmittance);
-        if ((request.readback & kReadShadowDetail) != 0)
-            readback.detail = addImageReadback(frame, r.shadowPass.image);
     }
-    facts.shadowMapSize = size;
-    facts.shadowMap = shadowMapMetadata(g, sunMoon, camera.localEarthRadiusM, request.unixTimeS,
-                                        r.weather->validTimeUnixS);
-    ShadowMapReference& ref = facts.shadowReference;
+    drawing.metadata = shadowMapMetadata(g, sunMoon, camera.localEarthRadiusM, request.unixTimeS,
+                                         r.weather->validTimeUnixS);
+    ShadowMapReference& ref = drawing.reference;
     ref.centreLatDeg = g.centreLatDeg;
     ref.centreLonDeg = g.centreLonDeg;
     ref.extentM = g.extentM;
@@ -220,13 +257,46 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
     ref.keyLightElevationDeg = key.elevationDeg;
 }
 
+}  // namespace
+
+void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request, const QualitySettings& quality,
+                     const CameraFrame& camera, const SunMoon& sunMoon, ShadowMapReadback& readback,
+                     RenderResult& facts)
+{
+    const uint32_t size = request.shadowMapSize;
+    ShadowMapDrawing next = drawingFor(r, request, quality, camera, sunMoon);
+    ShadowMapDrawing& drawn = r.shadowPass.drawn;
+    readback = ShadowMapReadback{};
+    readback.recorded = true;
+    readback.redrawn = !sameMap(drawn, next);
+    if (readback.redrawn)
+    {
+        next.id = drawn.id + 1;
+        drawShadowMap(r, frame, request, quality, camera, sunMoon, next);
+        drawn = std::move(next);
+    }
+    if (quality.readback)
+    {
+        readback.transmittance = addImageReadback(frame, r.shadowPass.transmittance);
+        if ((request.readback & kReadShadowDetail) != 0)
+            readback.detail = addImageReadback(frame, r.shadowPass.image);
+    }
+    facts.shadowMapSize = size;
+    facts.shadowMap = drawn.metadata;
+    facts.shadowReference = drawn.reference;
+    facts.shadowMapId = drawn.id;
+    facts.shadowMapRedrawn = readback.redrawn;
+}
+
 void collectShadowMap(const Renderer& r, const FrameContext& frame, const ShadowMapReadback& readback,
                       RenderResult& result)
 {
     if (!readback.recorded)
         return;
     uint64_t ts[2] = {0, 0};
-    if (r.ctx.timestampPeriodNs > 0 &&
+    if (!readback.redrawn)
+        result.gpuMs["shadowMap"] = 0.0;
+    else if (r.ctx.timestampPeriodNs > 0 &&
         vkGetQueryPoolResults(r.ctx.device, frame.timestamps, kTsShadowBegin, 2, sizeof ts, ts, sizeof(uint64_t),
                               VK_QUERY_RESULT_64_BIT) == VK_SUCCESS)
         result.gpuMs["shadowMap"] = double(ts[1] - ts[0]) * r.ctx.timestampPeriodNs * 1e-6;

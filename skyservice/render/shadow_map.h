@@ -89,18 +89,42 @@ bool validateShadowMapRequest(const ViewRequest& request, const QualitySettings&
 nlohmann::json shadowMapMetadata(const ShadowMapGeometry& geometry, const SunMoon& sunMoon, double earthRadiusM,
                                  int64_t unixTimeS, int64_t weatherValidTimeUnixS);
 
+/// What the map in ShadowMapPass's images was drawn for, and what was published with it. A later frame
+/// reuses it (no dispatch, the same metadata and id) while a new drawing would not differ: the same size,
+/// extent, quality, weather and window, the same animation second, the key light's shadows moved less
+/// than half a texel, and the eye (the map's centre) moved less than 1/64 of the extent. The map is
+/// geo-referenced by its own centre, so a reused map is exact where it lies.
+struct ShadowMapDrawing
+{
+    bool valid = false;
+    uint64_t id = 0;                  ///< counts drawings (RenderResult::shadowMapId)
+    uint32_t sizeTexels = 0;
+    double extentM = 0;
+    QualitySettings quality;          ///< with readback and linearOutput cleared (they change no texel)
+    uint64_t weatherVersion = 0;
+    const void* window = nullptr;     ///< the weather window drawn from (Renderer::window)
+    int64_t unixTimeS = 0;            ///< the view's time (the wind drift steps once per second)
+    glm::dvec3 eyeEcefM{0.0};
+    glm::dvec3 lightEnu{0.0};
+    bool lightIsMoon = false;
+    nlohmann::json metadata;          ///< RenderResult::shadowMap of the drawing
+    ShadowMapReference reference;     ///< RenderResult::shadowReference of the drawing
+};
+
 /// GPU objects of the pass, owned by the Renderer.
 struct ShadowMapPass
 {
     Program program;
     Image image;  ///< rgba16f (transmittance, optical depth), sizeTexels^2, GENERAL; (re)made with the size
     Image transmittance;  ///< r32f: the transmittance as readers take it (blitted from `image`)
+    ShadowMapDrawing drawn;  ///< what `image` and `transmittance` hold
 };
 
 /// Where a frame's shadow map lies in its readback buffer.
 struct ShadowMapReadback
 {
-    bool recorded = false;             ///< the frame rendered a shadow map
+    bool recorded = false;             ///< the frame has a shadow map (drawn or reused)
+    bool redrawn = false;              ///< it drew it (its timestamps are written)
     ReadbackRegion transmittance;      ///< float texels
     ReadbackRegion detail;             ///< the RGBA16F image (kReadShadowDetail)
 };
@@ -130,7 +154,8 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
                      const CameraFrame& camera, const SunMoon& sunMoon, ShadowMapReadback& readback,
                      RenderResult& facts);
 
-/// After the frame's fence: shadowTransmittance, shadowOpticalDepth (when read back) and gpuMs["shadowMap"].
+/// After the frame's fence: shadowTransmittance, shadowOpticalDepth (when read back) and gpuMs["shadowMap"]
+/// (0 when the frame reused the last drawing).
 void collectShadowMap(const Renderer& r, const FrameContext& frame, const ShadowMapReadback& readback,
                       RenderResult& result);
 

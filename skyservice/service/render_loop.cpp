@@ -195,9 +195,13 @@ void RenderLoop::Impl::run()
         WeatherState weather = s.weather;
         QualitySettings quality = s.quality;
         std::vector<FilesSubscription> files = s.files;
-        uint32_t layers = 1u << SKY_LAYER_DISPLAY;
+        uint32_t layers = 0;
         for (const auto& [client, bits] : s.shmLayers)
             layers |= bits;
+        // The display picture goes through the ring unless every reader imports the exported images:
+        // then the ring carries each frame's facts and the GPU's copy into the export is all there is.
+        if (!exporter.active() || !s.shmLayers.empty())
+            layers |= 1u << SKY_LAYER_DISPLAY;
         if (s.renderRateHz > 0)
         {
             auto period = std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(1.0 / s.renderRateHz));
@@ -232,7 +236,7 @@ void RenderLoop::Impl::startFrame(uint64_t id, ViewRequest request, const SimClo
                      std::any_of(files.begin(), files.end(), [](const FilesSubscription& f) { return f.format != "png"; });
     QualitySettings frameQuality = quality;
     frameQuality.linearOutput = writesFiles && exr;
-    request.readback = kReadDisplay;
+    request.readback = (layers & (1u << SKY_LAYER_DISPLAY)) ? kReadDisplay : 0u;
     if (layers & (1u << SKY_LAYER_SKY))
         request.readback |= kReadSky;
     if (layers & (1u << SKY_LAYER_CLOUDS))
@@ -294,6 +298,7 @@ void RenderLoop::Impl::completeFrame(InFlightFrame& frame)
         {
             f.shadowTransmittance = pixels.shadowTransmittance;
             f.shadow = shadowGeoRef(result);
+            f.shadowId = result.shadowMapId;
         }
         uint32_t slot = setup.ring->beginSlot();
         if (exporter.active() && !exporter.exportFrame(r, slot, frame.id, result, error))
@@ -399,12 +404,10 @@ void RenderLoop::Impl::doJob(const RenderJob& job)
     std::string error;
     if (job.kind == RenderJob::WriteFiles)
     {
-        if (!haveFrame)
-            reply(job.client, failedLine(job.requestId, "no frame has been rendered yet"));
-        else if (!resultHasPixels || result.linearRgbaHalf.empty())
+        if (!haveFrame || !resultHasPixels || result.linearRgbaHalf.empty())
         {
-            // The last frame's pixels are not on the host (or it has no linear frame for the EXR): render
-            // the next one with them, now.
+            // No frame yet (a `render` just asked for the first), or the last frame's pixels are not on the
+            // host (or it has no linear frame for the EXR): render the next one with them, now.
             pendingWriteFiles.push_back(job);
             std::lock_guard<std::mutex> lock(setup.state->mutex);
             setup.state->renderWantedUpTo = std::max(setup.state->renderWantedUpTo, setup.state->framesStarted + 1);

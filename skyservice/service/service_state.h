@@ -103,7 +103,8 @@ struct ServiceState
     uint64_t renderWantedUpTo = 0; ///< render on demand until this frame id has started
     std::vector<FilesSubscription> files;
     /// Shared-memory subscribers and the layers each asked for (bit k = SKY_LAYER_k, skyservice/ipc/shm_layout.h):
-    /// frames draw and publish the union; the display layer is published always.
+    /// frames draw and publish the union; the display layer is published always (while some
+    /// client is subscribed here, or no client imports the exported images).
     std::map<ClientId, uint32_t> shmLayers;
     std::deque<RenderJob> jobs;
     bool stop = false;

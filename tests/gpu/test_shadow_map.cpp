@@ -292,6 +292,71 @@ TEST_F(ShadowMap, MetadataCornersAgreeWithGeographicLib)
     EXPECT_NEAR(std::asin(d.z) * 180.0 / M_PI, double(m["sun"]["elevationDeg"]), 1e-6);
 }
 
+// A map is drawn again only when it would differ (shadow_map.h, ShadowMapDrawing): the same view again, or
+// an eye moved less than 1/64 of the extent, reuses the last drawing (same id, texels and geo-reference,
+// the drawing's own centre); a new second, a larger move, other quality or weather draw a new one.
+TEST_F(ShadowMap, IsReusedUntilANewDrawingWouldDiffer)
+{
+    const double cellLat = kEyeLatDeg + 0.06, cellLon = kEyeLonDeg + 0.08;
+    setWeather(*renderer, isolatedCell(cellLat, cellLon, 3000.0, CloudType::Stratus, 1500.0f, 2500.0f));
+    const int64_t noon = parseTime("2026-06-21T12:00:00Z");
+    QualitySettings q = testQuality();
+    q.maxViewSteps = 16;
+    q.shadowSteps = 32;
+    auto frame = [&](double northM, int64_t unixTimeS, const QualitySettings& quality) {
+        ViewRequest v;
+        v.pose = {kEyeLatDeg + northM / 111132.0, kEyeLonDeg, 500.0, 0.0, 10.0, 0.0};
+        v.width = 16;
+        v.height = 8;
+        v.unixTimeS = unixTimeS;
+        v.shadowMap = true;
+        v.shadowMapSize = kMapSize;
+        v.shadowMapExtentM = kMapExtentM;
+        RenderResult result;
+        SkyStatus s = renderView(*renderer, v, quality, result);
+        EXPECT_TRUE(s.ok()) << s.message;
+        EXPECT_EQ(result.shadowTransmittance.size(), size_t(kMapSize) * kMapSize);
+        return result;
+    };
+    const RenderResult first = frame(0.0, noon, q);
+    ASSERT_TRUE(first.shadowMapRedrawn);
+    ASSERT_LT(transmittanceRange(first).lo, 0.5f) << "the cell casts a shadow";
+
+    const RenderResult again = frame(0.0, noon, q);
+    EXPECT_FALSE(again.shadowMapRedrawn);
+    EXPECT_EQ(again.shadowMapId, first.shadowMapId);
+    EXPECT_EQ(again.shadowTransmittance, first.shadowTransmittance);
+    EXPECT_DOUBLE_EQ(again.gpuMs.at("shadowMap"), 0.0);
+
+    const RenderResult nearby = frame(300.0, noon, q);  // < 40 km / 64 = 625 m
+    EXPECT_FALSE(nearby.shadowMapRedrawn);
+    EXPECT_EQ(nearby.shadowMapId, first.shadowMapId);
+    EXPECT_EQ(nearby.shadowTransmittance, first.shadowTransmittance);
+    EXPECT_DOUBLE_EQ(double(nearby.shadowMap["centre"]["latDeg"]), kEyeLatDeg) << "the drawing's own centre";
+    EXPECT_DOUBLE_EQ(nearby.shadowReference.centreLatDeg, kEyeLatDeg);
+
+    const RenderResult moved = frame(2000.0, noon, q);
+    EXPECT_TRUE(moved.shadowMapRedrawn);
+    EXPECT_EQ(moved.shadowMapId, first.shadowMapId + 1);
+    EXPECT_GT(double(moved.shadowMap["centre"]["latDeg"]), kEyeLatDeg + 0.015);
+    EXPECT_NE(moved.shadowTransmittance, first.shadowTransmittance) << "the map moved with the eye";
+
+    const RenderResult later = frame(2000.0, noon + 1, q);
+    EXPECT_TRUE(later.shadowMapRedrawn) << "the wind drift steps once a second";
+
+    QualitySettings fewerSteps = q;
+    fewerSteps.shadowSteps = 16;
+    EXPECT_TRUE(frame(2000.0, noon + 1, fewerSteps).shadowMapRedrawn);
+    QualitySettings noReadback = fewerSteps;
+    noReadback.linearOutput = !fewerSteps.linearOutput;
+    EXPECT_FALSE(frame(2000.0, noon + 1, noReadback).shadowMapRedrawn) << "the linear frame changes no texel";
+
+    setWeather(*renderer, clearSky());
+    const RenderResult clear = frame(2000.0, noon + 1, fewerSteps);
+    EXPECT_TRUE(clear.shadowMapRedrawn);
+    EXPECT_GT(transmittanceRange(clear).lo, 0.999f);
+}
+
 TEST_F(ShadowMap, RejectsAMapLargerThanTheWeatherWindow)
 {
     ViewRequest v;

@@ -19,6 +19,7 @@ size_t skyTestCLayout(int what)
     case 6: return offsetof(SkyShmSlot, image_offset);
     case 7: return offsetof(SkyShmView, left_deg);
     case 8: return offsetof(SkyShmView, asymmetric);
+    case 9: return offsetof(SkyShmHeader, publish_futex);
     default: return 0;
     }
 }

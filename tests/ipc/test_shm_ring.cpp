@@ -70,6 +70,7 @@ TEST(ShmRing, LayoutHasNoPaddingAndMatchesC)
     EXPECT_EQ(skyTestCLayout(6), offsetof(SkyShmSlot, image_offset));
     EXPECT_EQ(skyTestCLayout(7), offsetof(SkyShmView, left_deg));
     EXPECT_EQ(skyTestCLayout(8), offsetof(SkyShmView, asymmetric));
+    EXPECT_EQ(skyTestCLayout(9), offsetof(SkyShmHeader, publish_futex));
     EXPECT_EQ(sizeof(SkyShmHeader), 152u);
     EXPECT_EQ(offsetof(SkyShmSlot, sequence), 0u);
 
@@ -146,6 +147,45 @@ TEST(ShmRing, RoundTrip)
     EXPECT_EQ(v.shadow, nullptr);
     EXPECT_EQ(v.slot->shadow_bytes, 0u);
     EXPECT_EQ(v.pixels[9 * 80 + 79], 9);
+}
+
+// A reader waiting for a frame sleeps on the ring's publish futex and is woken by the publish itself:
+// each publish counts in publish_futex, and a wait for a frame not yet published returns with that frame
+// long before its 60 s timeout (which would mean it slept through the wake).
+TEST(ShmRing, AWaitingReaderIsWokenByThePublish)
+{
+    ShmRingWriter w;
+    std::string error;
+    ShmRingConfig config = smallConfig();
+    ASSERT_TRUE(w.create(config, error)) << error;
+    ShmRingReader r;
+    ASSERT_TRUE(r.open(config.name, error)) << error;
+    ASSERT_TRUE(r.canWaitForPublish());
+    EXPECT_EQ(r.header()->publish_futex, 0u);
+    TestFrame first(1, 8, 4, 0);
+    ASSERT_TRUE(w.publish(first.frame, error)) << error;
+    EXPECT_EQ(r.header()->publish_futex, 1u);
+    EXPECT_EQ(r.waitForFrameAfter(0, 60000), 1u) << "a frame already there returns at once";
+
+    std::atomic<bool> waiting{false};
+    uint64_t seen = 0;
+    const auto start = std::chrono::steady_clock::now();
+    std::thread reader([&] {
+        waiting = true;
+        do  // a spurious wake (a signal) returns early: wait again
+            seen = r.waitForFrameAfter(1, 60000);
+        while (seen < 2 && std::chrono::steady_clock::now() - start < std::chrono::seconds(60));
+    });
+    while (!waiting)
+        std::this_thread::yield();
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));  // let it fall asleep (not required)
+    TestFrame second(2, 8, 4, 0);
+    ASSERT_TRUE(w.publish(second.frame, error)) << error;
+    reader.join();
+    const double waitedS = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(seen, 2u);
+    EXPECT_LT(waitedS, 30.0) << "the reader slept until its timeout: the publish did not wake it";
+    EXPECT_EQ(r.header()->publish_futex, 2u);
 }
 
 TEST(ShmRing, OversizedFrameIsRefusedAndNotPublished)

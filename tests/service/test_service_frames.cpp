@@ -360,6 +360,52 @@ TEST(ServiceFrames, ClientReconnectsAfterRestart)
     EXPECT_EQ(d.stop(), 0);
 }
 
+// While every subscriber imports the exported images, the ring's slots carry the frame's facts but no display
+// pixels (the GPU's copy into the export is the whole frame path); a shared-memory subscriber brings them back.
+TEST(ServiceFrames, VulkanOnlySubscribersGetNoDisplayPixelsInTheRing)
+{
+    TempDir tmp;
+    Daemon d;
+    std::string error;
+    ASSERT_TRUE(d.start(tmp.path, tinyFrames(20), error)) << error;
+    SkyClient* vulkan = nullptr;
+    ASSERT_EQ(sky_client_connect(d.socketPath.c_str(), "vulkan", &vulkan), SKY_OK);
+    SkyExportedFrames exported{};
+    ASSERT_EQ(sky_client_subscribe_vulkan(vulkan, &exported), SKY_OK) << sky_client_last_error(vulkan);
+    for (uint32_t i = 0; i < exported.slot_count; ++i)
+        for (int fd : {exported.frame[i].memory_fd, exported.shadow[i].memory_fd})
+            if (fd >= 0)
+                close(fd);
+    if (exported.timeline_semaphore_fd >= 0)
+        close(exported.timeline_semaphore_fd);
+    // A frame begun after the subscription was served (the export exists from then on).
+    uint64_t after = nextFrame(vulkan, 0);
+    ASSERT_GT(after, 0u);
+    after = nextFrame(vulkan, after + 2);
+    ASSERT_GT(after, 0u);
+    SkyFrame f{};
+    ASSERT_EQ(sky_client_acquire_frame(vulkan, &f), SKY_OK);
+    EXPECT_EQ(f.pixels, nullptr);
+    EXPECT_EQ(f.layers[SKY_LAYER_DISPLAY].format, 0u);
+    EXPECT_GT(f.width, 0u) << "the slot still describes the frame";
+    sky_client_release_frame(vulkan, &f);
+
+    SkyClient* shm = nullptr;
+    ASSERT_EQ(sky_client_connect(d.socketPath.c_str(), "shm", &shm), SKY_OK);
+    ASSERT_EQ(sky_client_subscribe_shm(shm), SKY_OK);
+    const uint64_t subscribed = nextFrame(shm, 0);
+    ASSERT_GT(subscribed, 0u);
+    ASSERT_GT(nextFrame(shm, subscribed + 2), 0u);
+    SkyFrame g{};
+    ASSERT_EQ(sky_client_acquire_frame(shm, &g), SKY_OK);
+    EXPECT_NE(g.pixels, nullptr);
+    EXPECT_EQ(g.format, SKY_FORMAT_RGBA8_SRGB);
+    sky_client_release_frame(shm, &g);
+    sky_client_close(shm);
+    sky_client_close(vulkan);
+    EXPECT_EQ(d.stop(), 0);
+}
+
 // subscribe with transport vulkan: the reply describes one exported image per slot (and a shadow image
 // per slot with shadow maps on) and the fds arrive with it; frames keep coming afterwards (the export
 // runs inside the frame loop). The import itself is tested by the client library's tests.
