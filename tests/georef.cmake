@@ -8,3 +8,12 @@ if(TARGET sky_ingest)
     target_compile_definitions(test_georef PRIVATE SKY_HAVE_INGEST SKY_SHARED_DIR="${SKY_SHARED_DIR}")
 endif()
 gtest_discover_tests(test_georef TEST_PREFIX "georef." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900)
+
+# Geo-referencing on every grid type (issue 23, grid_georef.*): a cloud cell written with ecCodes on a
+# Lambert (one and two parallels), polar stereographic (north, south), Mercator, rotated, reduced Gaussian
+# and reduced lat/lon grid, converted by sky_ingest, lands within 1 degree of its direction from 50 km.
+if(TARGET sky_ingest)
+    add_executable(test_grid_georef gpu/test_grid_georef.cpp gpu/scenes.cpp)
+    target_link_libraries(test_grid_georef PRIVATE sky_renderer sky_ingest GTest::gtest_main sky_warnings)
+    gtest_discover_tests(test_grid_georef TEST_PREFIX "grid_georef." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+endif()
