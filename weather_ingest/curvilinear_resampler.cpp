@@ -362,6 +362,12 @@ template <typename T> std::vector<float> CurvilinearResampler::resampleValues(co
         const std::array<float, 4> x{float(source[k00]), float(source[k01]), float(source[k00 + nx]),
                                      float(source[k01 + nx])};
         const std::array<float, 4> w{(1 - a) * (1 - b), a * (1 - b), (1 - a) * b, a * b};
+        const float all = w[0] * x[0] + w[1] * x[1] + w[2] * x[2] + w[3] * x[3];
+        if (std::isfinite(all)) // the usual case: four known corners (divided: a constant field stays exact)
+        {
+            out[t] = all / (w[0] + w[1] + w[2] + w[3]);
+            continue;
+        }
         float sum = 0, wsum = 0;
         for (size_t q = 0; q < 4; ++q)
         {

@@ -148,11 +148,10 @@ GribGrid::GribGrid(const GribGridPoints& p, size_t maxCells)
                 const double east =
                     wrapLongitudeDeg(double(lon[b]) - double(lon[a])) * std::cos(double(lat[a]) * kRadPerDeg);
                 const double north = double(lat[b]) - double(lat[a]);
-                double alpha = std::atan2(north, east);
-                if (p.iScansNegatively)
-                    alpha += std::numbers::pi;
-                cosA[j * nx_ + i] = float(std::cos(alpha));
-                sinA[j * nx_ + i] = float(std::sin(alpha));
+                // cos and sin of atan2(north, east), turned by 180° where i runs westwards.
+                const double length = std::hypot(east, north), sign = p.iScansNegatively ? -1.0 : 1.0;
+                cosA[j * nx_ + i] = float(length > 0 ? sign * east / length : sign);
+                sinA[j * nx_ + i] = float(length > 0 ? sign * north / length : 0.0);
             }
         xAxisCos_ = resampler_->resample(cosA);
         xAxisSin_ = resampler_->resample(sinA);
