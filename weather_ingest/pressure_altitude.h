@@ -73,11 +73,15 @@ class LevelSampler
         if (k0_ != nullptr)
         {
             const float v0 = k0_[cell];
-            if (hold_ && !std::isnan(v0))
-                return v0;
-            const float v1 = k1_[cell];
-            if (!std::isnan(v0) && !std::isnan(v1))
+            if (hold_)
+            {
+                if (!std::isnan(v0))
+                    return v0;
+            }
+            else if (const float v1 = k1_[cell]; !std::isnan(v0) && !std::isnan(v1))
+            {
                 return static_cast<float>(double(v0) + (double(v1) - double(v0)) * t_);
+            }
         }
         return stack_.empty() ? NAN : stack_.at(cell, atPressurePa_, extrapolate_);
     }
