@@ -13,6 +13,7 @@ if(TARGET sky_ingest)
         ${SKY_INGEST_TEST_DIR}/grib_ingest_test.cpp
         ${SKY_INGEST_TEST_DIR}/bad_input_test.cpp
         ${SKY_INGEST_TEST_DIR}/grid_types_test.cpp
+        ${SKY_INGEST_TEST_DIR}/level_stack_test.cpp
         ${SKY_INGEST_TEST_DIR}/wrf_ingest_test.cpp)
     target_link_libraries(ingest_decoder_tests PRIVATE sky_ingest sky_netcdf GTest::gtest_main sky_warnings)
     target_compile_definitions(ingest_decoder_tests PRIVATE SKY_SHARED_DIR="${SKY_SHARED_DIR}")

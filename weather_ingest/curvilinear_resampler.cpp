@@ -139,6 +139,8 @@ CurvilinearResampler::CurvilinearResampler(const std::vector<float>& latDeg, con
     if (ny < 2 || nx < 2 || latDeg.size() != ny * nx || lonDeg.size() != ny * nx)
         throw std::invalid_argument("2D coordinates need at least 2 x 2 points and ny * nx values");
     const size_t n = ny * nx;
+    if (n >= kWrapsRound)
+        throw std::length_error("more than 2^31 source points");
     std::vector<double> lat(n), lon(n);
     std::vector<Vec3> v(n);
     double latSum = 0;
@@ -244,8 +246,7 @@ CurvilinearResampler::CurvilinearResampler(const std::vector<float>& latDeg, con
             for (const size_t q : k)
                 for (int d = 0; d < 3; ++d)
                     c[size_t(d)] += v[q][size_t(d)];
-            Gnomonic g;
-            if (!normalise(c) || !g.setUp(c))
+            if (!normalise(c))
                 continue;
             double latLo = 90, latHi = -90, lonLo = 0, lonHi = 0, edgeRad = 0;
             for (size_t q = 0; q < 4; ++q)
@@ -255,13 +256,20 @@ CurvilinearResampler::CurvilinearResampler(const std::vector<float>& latDeg, con
                 const double rel = wrapLongitudeDeg(lon[k[q]] - lon[k[0]]);
                 lonLo = std::min(lonLo, rel);
                 lonHi = std::max(lonHi, rel);
-                edgeRad = std::max(edgeRad, angleRad(v[k[q]], v[k[(q + 1) % 4]]));
             }
             // Away from the poles a quad is taken with straight edges in longitude and latitude (scaled
             // by cos(latitude)), so rows of a lat/lon-aligned grid (Mercator, Gaussian) keep their exact
-            // latitude; near a pole, and round it, in the gnomonic projection.
+            // latitude; near a pole, and round it, in the gnomonic projection (only set up there: most
+            // quads of most grids never need it).
             const double poleLat = std::max(std::abs(latLo), std::abs(latHi));
             bool gnomonic = poleLat > kGnomonicAboveDeg;
+            Gnomonic g;
+            if (gnomonic || (pole && poleLat > 45.0))
+            {
+                g.setUp(c);
+                for (size_t q = 0; q < 4; ++q)
+                    edgeRad = std::max(edgeRad, angleRad(v[k[q]], v[k[(q + 1) % 4]]));
+            }
             bool allColumns = false;
             const double cosC = std::cos(0.5 * (latLo + latHi) * kRadPerDeg);
             const double lon00 = lon[k[0]], latC = 0.5 * (latLo + latHi);
@@ -331,42 +339,56 @@ CurvilinearResampler::CurvilinearResampler(const std::vector<float>& latDeg, con
                                grid_.lon0Deg + double(col) * grid_.dLonDeg, tp) ||
                         !inverseBilinear(tp, p[0], p[1], p[2], p[3], a, b, tolerance))
                         continue;
-                    cell.quad = uint32_t(j * nx + i);
-                    cell.a = float(std::clamp(a, 0.0, 1.0));
-                    cell.b = float(std::clamp(b, 0.0, 1.0));
+                    cell.quad = uint32_t(j * nx + i) | (i + 1 < nx ? 0u : kWrapsRound);
+                    cell.a = uint16_t(std::lround(std::clamp(a, 0.0, 1.0) * double(kFractionUnit)));
+                    cell.b = uint16_t(std::lround(std::clamp(b, 0.0, 1.0) * double(kFractionUnit)));
                 }
         }
     grid_.lon0Deg = wrapLongitudeDeg(grid_.lon0Deg);
 }
 
-std::vector<float> CurvilinearResampler::resample(const std::vector<float>& source) const
+template <typename T> std::vector<float> CurvilinearResampler::resampleValues(const T* source) const
 {
     std::vector<float> out(cells_.size(), NAN);
+    const size_t nx = nx_;
     for (size_t t = 0; t < cells_.size(); ++t)
     {
         const QuadPosition& cell = cells_[t];
         if (cell.quad == kOutside)
             continue;
-        const size_t i = cell.quad % nx_;
-        const size_t row = cell.quad - i;
-        const size_t i1 = i + 1 < nx_ ? i + 1 : 0;
-        const float a = cell.a, b = cell.b;
-        const std::array<size_t, 4> k{row + i, row + i1, row + nx_ + i, row + nx_ + i1};
+        const float a = float(cell.a) / kFractionUnit, b = float(cell.b) / kFractionUnit;
+        const size_t k00 = cell.quad & ~kWrapsRound;
+        const size_t k01 = (cell.quad & kWrapsRound) != 0 ? k00 + 1 - nx : k00 + 1;
+        const std::array<float, 4> x{float(source[k00]), float(source[k01]), float(source[k00 + nx]),
+                                     float(source[k01 + nx])};
         const std::array<float, 4> w{(1 - a) * (1 - b), a * (1 - b), (1 - a) * b, a * b};
+        const float all = w[0] * x[0] + w[1] * x[1] + w[2] * x[2] + w[3] * x[3];
+        if (std::isfinite(all)) // the usual case: four known corners (divided: a constant field stays exact)
+        {
+            out[t] = all / (w[0] + w[1] + w[2] + w[3]);
+            continue;
+        }
         float sum = 0, wsum = 0;
         for (size_t q = 0; q < 4; ++q)
         {
-            const float x = source[k[q]];
-            if (std::isfinite(x))
-            {
-                sum += w[q] * x;
-                wsum += w[q];
-            }
+            const bool known = std::isfinite(x[q]);
+            sum += known ? w[q] * x[q] : 0.0f;
+            wsum += known ? w[q] : 0.0f;
         }
         if (wsum > 0)
             out[t] = sum / wsum;
     }
     return out;
+}
+
+std::vector<float> CurvilinearResampler::resample(const std::vector<float>& source) const
+{
+    return resampleValues(source.data());
+}
+
+std::vector<float> CurvilinearResampler::resample(const std::vector<double>& source) const
+{
+    return resampleValues(source.data());
 }
 
 double CurvilinearResampler::coveredFraction() const

@@ -60,15 +60,18 @@ GribGrid::GribGrid(const GribGridPoints& p, size_t maxCells)
     if (!p.pl.empty())
     {
         // Reduced grid: rows of pl[j] points evenly spaced round the globe, expanded to max(pl) columns.
+        // Rows of no points (ECMWF's reduced lat/lon grids have them at the poles) are left out.
         if (p.pl.size() != p.nj || p.nj < 2)
             throw std::invalid_argument("reduced grid with " + std::to_string(p.pl.size()) + " row lengths for " +
                                         std::to_string(p.nj) + " rows");
         size_t start = 0;
         for (const long count : p.pl)
         {
-            if (count < 1 || start + size_t(count) > n)
+            if (count < 0 || start + size_t(count) > n)
                 throw std::invalid_argument("reduced grid row lengths do not add up to the " + std::to_string(n) +
                                             " points");
+            if (count == 0)
+                continue;
             rowStart_.push_back(start);
             rowPoints_.push_back(count);
             start += size_t(count);
@@ -76,8 +79,10 @@ GribGrid::GribGrid(const GribGridPoints& p, size_t maxCells)
         if (start != n)
             throw std::invalid_argument("reduced grid row lengths add up to " + std::to_string(start) + ", not the " +
                                         std::to_string(n) + " points");
+        if (rowPoints_.size() < 2)
+            throw std::invalid_argument("reduced grid with fewer than 2 rows of points");
         nx_ = size_t(*std::max_element(rowPoints_.begin(), rowPoints_.end()));
-        ny_ = p.nj;
+        ny_ = rowPoints_.size();
         const double lon0 = p.lonDeg[0];
         for (size_t j = 0; j < ny_; ++j)
         {
@@ -143,11 +148,10 @@ GribGrid::GribGrid(const GribGridPoints& p, size_t maxCells)
                 const double east =
                     wrapLongitudeDeg(double(lon[b]) - double(lon[a])) * std::cos(double(lat[a]) * kRadPerDeg);
                 const double north = double(lat[b]) - double(lat[a]);
-                double alpha = std::atan2(north, east);
-                if (p.iScansNegatively)
-                    alpha += std::numbers::pi;
-                cosA[j * nx_ + i] = float(std::cos(alpha));
-                sinA[j * nx_ + i] = float(std::sin(alpha));
+                // cos and sin of atan2(north, east), turned by 180° where i runs westwards.
+                const double length = std::hypot(east, north), sign = p.iScansNegatively ? -1.0 : 1.0;
+                cosA[j * nx_ + i] = float(length > 0 ? sign * east / length : sign);
+                sinA[j * nx_ + i] = float(length > 0 ? sign * north / length : 0.0);
             }
         xAxisCos_ = resampler_->resample(cosA);
         xAxisSin_ = resampler_->resample(sinA);

@@ -49,14 +49,20 @@ private:
         {
             if (r->row.role != role)
                 continue;
-            std::vector<float> v = r->field.values;
             // Cloud cover on levels comes as a fraction (ECMWF cc) or in % (ICON CLC).
             const float unit =
                 role == GribRole::LevelCloudCover && r->info.units.find('%') != std::string::npos ? 0.01f : 1.0f;
             if (scale * unit != 1.0f)
+            {
+                std::vector<float> v = r->field.values;
                 for (float& x : v)
                     x *= scale * unit;
-            s.addLevel(r->levelPa, v);
+                s.addLevel(r->levelPa, std::move(v));
+            }
+            else // the record outlives the mapping: a view, not a copy of the field
+            {
+                s.addLevelView(r->levelPa, r->field.values.data(), r->field.values.size());
+            }
             note(r);
         }
         return s;
@@ -125,10 +131,10 @@ private:
 bool GribMapper::ccBand(size_t cell, double pHighPa, double pLowPa, float& baseM, float& topM) const
 {
     bool any = false;
-    for (size_t k = 0; k < cloudCover_.pressurePa.size(); ++k)
+    for (size_t k = 0; k < cloudCover_.levelCount(); ++k)
     {
-        const double p = cloudCover_.pressurePa[k];
-        if (p < pHighPa || p >= pLowPa || !(cloudCover_.values[k * cloudCover_.cells + cell] >= kCloudyLevelFraction))
+        const double p = cloudCover_.pressurePa(k);
+        if (p < pHighPa || p >= pLowPa || !(cloudCover_.level(k)[cell] >= kCloudyLevelFraction))
             continue;
         const float z = pressureToAltitudeM(heightM_, cell, p);
         baseM = any ? std::min(baseM, z) : z;
@@ -176,11 +182,16 @@ void GribMapper::heights(size_t layerIndex, LayerKind kind, GribRole bottomRole,
     const double bandLow = kind == LayerKind::Low ? 1e9 : kEcmwfLowTopPa;
     const double bandHigh = kind == LayerKind::Low ? kEcmwfLowTopPa : kEcmwfMiddleTopPa;
     size_t defaulted = 0;
+    const double defaultMidPa = std::sqrt(def.basePa * def.topPa);
+    const AltitudeAtPressure defaultBaseM(heightM_, def.basePa), defaultTopM(heightM_, def.topPa);
+    const LevelSampler defaultU(windU_, defaultMidPa, false), defaultV(windV_, defaultMidPa, false);
     for (size_t i = 0; i < n; ++i)
     {
-        double midPa = std::sqrt(def.basePa * def.topPa);
+        double midPa = defaultMidPa;
+        bool atDefault = true;
         if (!pb.empty() && std::isfinite(pb[i]) && std::isfinite(pt[i]))
         {
+            atDefault = false;
             l.baseAltitudeM[i] = pressureToAltitudeM(heightM_, i, pb[i]);
             l.topAltitudeM[i] = pressureToAltitudeM(heightM_, i, pt[i]);
             midPa = std::sqrt(double(pb[i]) * double(pt[i]));
@@ -195,8 +206,8 @@ void GribMapper::heights(size_t layerIndex, LayerKind kind, GribRole bottomRole,
             }
             else
             {
-                l.baseAltitudeM[i] = pressureToAltitudeM(heightM_, i, def.basePa);
-                l.topAltitudeM[i] = pressureToAltitudeM(heightM_, i, def.topPa);
+                l.baseAltitudeM[i] = defaultBaseM(i);
+                l.topAltitudeM[i] = defaultTopM(i);
                 ++defaulted;
             }
             const float depthM = l.topAltitudeM[i] - l.baseAltitudeM[i];
@@ -217,8 +228,8 @@ void GribMapper::heights(size_t layerIndex, LayerKind kind, GribRole bottomRole,
         }
         if (!windU_.empty() && !windV_.empty())
         {
-            const float u = windU_.at(i, midPa, false);
-            const float v = windV_.at(i, midPa, false);
+            const float u = atDefault ? defaultU(i) : windU_.at(i, midPa, false);
+            const float v = atDefault ? defaultV(i) : windV_.at(i, midPa, false);
             l.windEastMS[i] = std::isfinite(u) ? u : 0.0f;
             l.windNorthMS[i] = std::isfinite(v) ? v : 0.0f;
         }
@@ -252,20 +263,24 @@ void GribMapper::highLayer(WeatherSnapshot& s)
     s.high.altitudeM.assign(n, NAN);
     s.high.windEastMS.assign(n, 0.0f);
     s.high.windNorthMS.assign(n, 0.0f);
+    const double defaultMidPa = std::sqrt(def.basePa * def.topPa);
+    const AltitudeAtPressure defaultM(heightM_, defaultMidPa);
+    const LevelSampler defaultU(windU_, defaultMidPa, false), defaultV(windV_, defaultMidPa, false);
     for (size_t i = 0; i < n; ++i)
     {
-        double midPa = std::sqrt(def.basePa * def.topPa);
-        if (!pb.empty() && std::isfinite(pb[i]) && std::isfinite(pt[i]))
+        double midPa = defaultMidPa;
+        const bool atDefault = pb.empty() || !std::isfinite(pb[i]) || !std::isfinite(pt[i]);
+        if (!atDefault)
             midPa = std::sqrt(double(pb[i]) * double(pt[i]));
         float baseM = NAN, topM = NAN;
         if (pb.empty() && !cloudCover_.empty() && ccBand(i, 1.0, kEcmwfMiddleTopPa, baseM, topM))
             s.high.altitudeM[i] = 0.5f * (baseM + topM);
         else
-            s.high.altitudeM[i] = pressureToAltitudeM(heightM_, i, midPa);
+            s.high.altitudeM[i] = atDefault ? defaultM(i) : pressureToAltitudeM(heightM_, i, midPa);
         if (!windU_.empty() && !windV_.empty())
         {
-            const float u = windU_.at(i, midPa, false);
-            const float v = windV_.at(i, midPa, false);
+            const float u = atDefault ? defaultU(i) : windU_.at(i, midPa, false);
+            const float v = atDefault ? defaultV(i) : windV_.at(i, midPa, false);
             s.high.windEastMS[i] = std::isfinite(u) ? u : 0.0f;
             s.high.windNorthMS[i] = std::isfinite(v) ? v : 0.0f;
         }
@@ -305,14 +320,14 @@ WeatherSnapshot GribMapper::run()
     s.provenance["altitudes"] = heightM_.empty()
                                     ? "pressure -> altitude: ICAO standard atmosphere (no geopotential on levels)"
                                     : "pressure -> altitude: geopotential height on " +
-                                          std::to_string(heightM_.pressurePa.size()) +
+                                          std::to_string(heightM_.levelCount()) +
                                           " pressure levels, log-pressure interpolation";
     windU_ = stack(GribRole::LevelU, 1.0f);
     windV_ = stack(GribRole::LevelV, 1.0f);
     cloudCover_ = stack(GribRole::LevelCloudCover, 1.0f);
     s.provenance["wind"] = windU_.empty() || windV_.empty()
                                ? "absent: 0 m/s"
-                               : "u/v on " + std::to_string(windU_.pressurePa.size()) +
+                               : "u/v on " + std::to_string(windU_.levelCount()) +
                                      " pressure levels at each layer's mid-layer pressure";
     if (const GribRecord* orog = find(GribRole::Orography))
         ground_ = values(orog, -1000.0f, 9000.0f);
@@ -404,8 +419,9 @@ WeatherSnapshot GribMapper::run()
             PressureLevelField f;
             f.name = name;
             f.units = role == GribRole::LevelCloudCover ? "1" : "kg/kg";
-            f.pressurePa.assign(st.pressurePa.begin(), st.pressurePa.end());
-            f.values = std::move(st.values);
+            for (size_t k = 0; k < st.levelCount(); ++k)
+                f.pressurePa.push_back(static_cast<float>(st.pressurePa(k)));
+            f.values = st.concatenated();
             s.provenance["levelFields/" + std::string(name)] = find(role)->source + " and other levels";
             s.levelFields.push_back(std::move(f));
         }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Writing GRIB with ecCodes: used by the benchmark (a 0.25° GFS-like file) and by tests (fixtures made at
-// test time, so no binary fixture is committed). Not used by conversion.
+// test time, so no binary fixture is committed; cloud discs per grid type: grib_fixture.h). Not used by
+// conversion.
 #pragma once
 
 #include "weather_ingest/weather_snapshot.h"
@@ -30,25 +31,6 @@ struct GribOutField
     std::string packingType;         ///< e.g. "grid_ieee" (empty: the sample's)
     bool nanAsValue = false;         ///< write NaN as a value (IEEE packing), not as a bitmap hole (tests)
 };
-
-/// Grid kinds of writeCloudDiscFixture().
-enum class FixtureGrid
-{
-    Lambert,             ///< 60 x 50 at 20 km, tangent at the disc's latitude, centred near the disc
-    LambertTwoParallels, ///< the same with standard parallels 7° south and 5° north of it
-    PolarNorth,          ///< 60 x 60 at 50 km round the north pole (true at 60° N)
-    PolarSouth,          ///< the same round the south pole
-    Rotated,             ///< 81 x 61 at 0.25° on a grid rotated to the south pole (-40, 10): centred at 50° N, 10° E
-    ReducedGaussian,     ///< ecCodes' global N32 reduced Gaussian sample
-};
-
-/// Writes one GRIB2 message of low cloud cover (NCEP tcc on lowCloudLayer, %) on a grid of the given kind,
-/// made from Debian's ecCodes samples: coveragePercent within radiusKm of (latDeg, lonDeg) as ecCodes
-/// locates the points, 0 elsewhere. For tests (e.g. a geo-reference check per grid type); throws
-/// IngestError(Output). lambertScale multiplies the Lambert grids' points per side and divides their spacing.
-void writeCloudDiscFixture(const std::string& path, FixtureGrid kind, double latDeg, double lonDeg, double radiusKm,
-                           double coveragePercent, bool iScansNegatively = false, bool jScansPositively = true,
-                           int lambertScale = 1);
 
 /// Writes all fields into one GRIB file (not atomic: for tests and the benchmark).
 /// Throws IngestError(Output) naming the field and key when ecCodes refuses something.
