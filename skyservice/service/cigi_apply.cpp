@@ -150,6 +150,25 @@ void CigiApplier::applyTime(const cigi::CigiState& state, ServiceState& s)
     s.clock.rate = rate;
 }
 
+void CigiApplier::applyAir(const cigi::CigiState& state, ServiceState& s)
+{
+    // Caller holds s.mutex. The haze near the ground (skyservice/sky/atmosphere.h setHazeVisibility; 0: the
+    // clear atmosphere's) and the global ground fog (setGroundFog): a band at its height above mean sea level
+    // under the eye, all around the earth (the atmosphere is a sphere).
+    const cigi::AtmosphereState& air = state.atmosphere;
+    s.view.visibilityM = air.set && air.visibilityM > 0 ? double(air.visibilityM) : 0.0;
+    s.view.fogBaseM = s.view.fogTopM = s.view.fogVisibilityM = 0.0;
+    auto fog = state.globalLayers.find(0);
+    if (fog == state.globalLayers.end() || !fog->second.enabled || !(fog->second.thicknessM > 0) ||
+        !(fog->second.visibilityM > 0))
+        return;
+    const double n = geoid_.undulationM(s.view.pose.latDeg, s.view.pose.lonDeg);
+    const double undulationM = std::isfinite(n) ? n : 0.0;
+    s.view.fogBaseM = double(fog->second.baseElevationMslM) + undulationM;
+    s.view.fogTopM = s.view.fogBaseM + double(fog->second.thicknessM);
+    s.view.fogVisibilityM = double(fog->second.visibilityM);
+}
+
 void CigiApplier::apply(const cigi::CigiState& state, const cigi::DecodeResult& datagram, ServiceState& s)
 {
     apply(state, datagram, s, nowS());
@@ -186,6 +205,7 @@ void CigiApplier::apply(const cigi::CigiState& state, const cigi::DecodeResult& 
         }
         if (contains<cigi::CelestialSphereControl>(datagram))
             applyTime(state, s);
+        applyAir(state, s);
         if (weather)
             install(s, std::move(weather));
         if (s.renderRateHz == 0)

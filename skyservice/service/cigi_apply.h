@@ -64,6 +64,8 @@ class CigiApplier
   private:
     void applyView(const cigi::CigiState& state, ServiceState& service);
     void applyTime(const cigi::CigiState& state, ServiceState& service);
+    /// Atmosphere Control's visibility and the global ground fog (layer 0) as the frame's haze and fog.
+    void applyAir(const cigi::CigiState& state, ServiceState& service);
     /// Builds the snapshot when what is drawn changed or a fade step is due; null when nothing is to be
     /// swapped in. `stepDrawn`: the frames draw the last snapshot published.
     std::shared_ptr<const WeatherTimeline> weatherIfChanged(const cigi::CigiState& state, double ownLatDeg,
