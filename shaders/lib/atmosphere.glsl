@@ -92,6 +92,18 @@ float ozoneDensity(IN(AtmosphereParams) p, float altitudeM)
     return max(0.0f, 1.0f - abs(altitudeM - p.ozoneLayer.x) / p.ozoneLayer.y);
 }
 
+// Ground fog (groundFog: a band of uniform extinction, none when z is 0): its extinction (1/m) at an
+// altitude. The band's edges ramp over a tenth of its thickness (at most 20 m): a step would alias
+// between the LUTs' altitude rows.
+float groundFogExtinction(IN(AtmosphereParams) p, float altitudeM)
+{
+    if (p.groundFog.z <= 0.0f)
+        return 0.0f;
+    float edge = clamp(0.1f * (p.groundFog.y - p.groundFog.x), 1.0f, 20.0f);
+    return p.groundFog.z * smoothstep(p.groundFog.x - edge, p.groundFog.x, altitudeM) *
+           (1.0f - smoothstep(p.groundFog.y, p.groundFog.y + edge, altitudeM));
+}
+
 // Extinction coefficient (1/m) at an altitude.
 vec3 extinctionAt(IN(AtmosphereParams) p, float altitudeM)
 {
@@ -99,7 +111,7 @@ vec3 extinctionAt(IN(AtmosphereParams) p, float altitudeM)
     vec3 mie = vec3(p.mieExtinction.x, p.mieExtinction.y, p.mieExtinction.z);
     vec3 ozone = vec3(p.ozoneAbsorption.x, p.ozoneAbsorption.y, p.ozoneAbsorption.z);
     return rayleigh * rayleighDensity(p, altitudeM) + mie * mieDensity(p, altitudeM) +
-           ozone * ozoneDensity(p, altitudeM);
+           ozone * ozoneDensity(p, altitudeM) + vec3(groundFogExtinction(p, altitudeM));
 }
 
 // Rayleigh and Mie scattering coefficients (1/m) at an altitude.
@@ -109,9 +121,11 @@ vec3 rayleighScatteringAt(IN(AtmosphereParams) p, float altitudeM)
            rayleighDensity(p, altitudeM);
 }
 
+// The fog's droplets scatter what they take (albedo 1), with the aerosol's forward-peaked phase function.
 vec3 mieScatteringAt(IN(AtmosphereParams) p, float altitudeM)
 {
-    return vec3(p.mieScattering.x, p.mieScattering.y, p.mieScattering.z) * mieDensity(p, altitudeM);
+    return vec3(p.mieScattering.x, p.mieScattering.y, p.mieScattering.z) * mieDensity(p, altitudeM) +
+           vec3(groundFogExtinction(p, altitudeM));
 }
 
 // Optical depth (dimensionless, per channel) from r along mu over [0, length], trapezoidal rule on a

@@ -22,6 +22,8 @@ struct AtmosphereParams
     vec4 radii;               // x: bottom (ground) radius (m); y: top radius (m); z: sun angular radius (rad); w: moon angular radius (rad)
     vec4 groundAlbedo;        // rgb: Lambertian ground albedo; w: unused
     vec4 solarIrradiance;     // rgb: solar irradiance at the top of the atmosphere (W m^-2 nm^-1 at 680, 550, 440 nm); w: unused
+    // Ground fog, a band of extra extinction, all of it scattered (none when z is 0):
+    vec4 groundFog;           // x: base, y: top altitude (m above the bottom); z: extinction inside (1/m); w: unused
 };
 
 // LUT sizes (Hillaire 2020 §4-5). Transmittance: x = view zenith, y = altitude (Bruneton mapping).

@@ -40,9 +40,12 @@ vec3 lutDirection(const glm::dvec3& d)
     return n > 0.0 ? vec3(q / n) : vec3(0.0f, 0.0f, 1.0f);
 }
 
-AtmosphereParams frameAtmosphere(double radiusM, const SunMoon& sunMoon)
+AtmosphereParams frameAtmosphere(double radiusM, const SunMoon& sunMoon, const ViewRequest& view)
 {
     AtmosphereParams p = makeEarthAtmosphere(radiusM);
+    if (view.visibilityM > 0.0)
+        setHazeVisibility(p, view.visibilityM);
+    setGroundFog(p, view.fogBaseM, view.fogTopM, view.fogVisibilityM);
     double moonRadiusRad = moonAngularRadiusRad(sunMoon.moon.distanceM);
     p.radii.w = float(std::round(moonRadiusRad * 1e8) * 1e-8);  // 1e-5 of ~4.5e-3 rad
     return p;
@@ -149,9 +152,14 @@ void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camer
                       const FrameInputs& in)
 {
     const double R = atmosphereGroundRadiusM(camera);
-    AtmosphereParams p = frameAtmosphere(R, sunMoon);
+    AtmosphereParams p = frameAtmosphere(R, sunMoon, *in.request);
     std::memcpy(recording(r).atmosphereUniforms.mapped, &p, sizeof p);
-    const bool rebuild = r.atmosphereRadiusM != R;
+    // The transmittance and multiple-scattering LUTs depend on the radius, the haze and the fog. The last
+    // haze and fog they were made with are the sky-view LUT's (made in the same call as they are, after them).
+    const bool hazeChanged =
+        std::memcmp(&p.mieScattering, &r.skyViewAtmosphere.mieScattering, 2 * sizeof(vec4)) != 0 ||
+        std::memcmp(&p.groundFog, &r.skyViewAtmosphere.groundFog, sizeof(vec4)) != 0;
+    const bool rebuild = r.atmosphereRadiusM != R || hazeChanged;
     if (rebuild)
     {
         dispatch(r.ctx, cmd, r.transmittanceProgram, TRANSMITTANCE_LUT_WIDTH, TRANSMITTANCE_LUT_HEIGHT, 1, nullptr, 0,

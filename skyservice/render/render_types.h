@@ -161,6 +161,12 @@ struct ViewRequest
     uint32_t width = 640;
     uint32_t height = 360;
     int64_t unixTimeS = 0;           ///< UTC time of the view (s since 1970)
+    /// Meteorological visibility near the ground (m): sets the haze (skyservice/sky/atmosphere.h
+    /// setHazeVisibility); 0 = the clear atmosphere's own (~170 km).
+    double visibilityM = 0.0;
+    /// Ground fog (setGroundFog): a band from fogBaseM to fogTopM (m above the ellipsoid) with visibility
+    /// fogVisibilityM (m) inside; none when that is 0.
+    double fogBaseM = 0.0, fogTopM = 0.0, fogVisibilityM = 0.0;
     bool shadowMap = false;          ///< also render the cloud shadow map (skyservice/render/shadow_map.h)
     uint32_t shadowMapSize = 1024;   ///< shadow map texels per side
     double shadowMapExtentM = 150000.0;  ///< edge length of the shadow map's square on the ground (m)

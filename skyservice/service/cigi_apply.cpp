@@ -38,36 +38,95 @@ void CigiApplier::report(Problem problem, bool failed, const std::string& messag
     current = failed ? message : std::string();
 }
 
-std::shared_ptr<const WeatherTimeline> CigiApplier::weatherIfChanged(const cigi::CigiState& state, double ownLatDeg,
-                                                                     double ownLonDeg, double simTimeS)
+double CigiApplier::nowS() const
 {
-    if (!cigiHasCloudWeather(state))
+    return std::chrono::duration<double>(SteadyClock::now() - epoch_).count();
+}
+
+std::shared_ptr<const WeatherTimeline> CigiApplier::weatherIfChanged(const cigi::CigiState& state, double ownLatDeg,
+                                                                     double ownLonDeg, double simTimeS, double nowS,
+                                                                     bool stepDrawn)
+{
+    const bool changed = fade_.setTarget(state, nowS);
+    if (!fade_.started())
         return nullptr; // the configured weather stays until the host sets a cloud layer
-    std::vector<double> signature = cigiWeatherSignature(state);
+    const bool fading = fade_.fading(nowS);
+    if (changed && fading && !lastBuildFading_)
+    {
+        // At nowS the fade has not begun (what is drawn is what was): its first step comes a step later.
+        lastBuildFading_ = true;
+        lastBuildS_ = nowS;
+    }
     // A regional grid follows the ownship: remade when it has come a quarter of the way to the grid's edge.
     const bool drifted = weatherGrid_.regional &&
                          roughDistanceM(weatherGrid_.centreLatDeg, weatherGrid_.centreLonDeg, ownLatDeg, ownLonDeg) >
                              0.25 * weatherGrid_.halfExtentM;
-    if (weatherBuilt_ && signature == weatherSignature_ && !drifted)
+    const bool stepDue = lastBuildFading_ && stepDrawn && nowS - lastBuildS_ >= kCigiFadeStepS;
+    if (weatherBuilt_ && !drifted && !(changed && !fading) && !stepDue)
         return nullptr;
-    CigiWeatherGrid grid = cigiWeatherGrid(state, ownLatDeg, ownLonDeg);
+    CigiWeatherGrid grid = cigiWeatherGrid(fade_, ownLatDeg, ownLonDeg);
     auto timeline = std::make_shared<WeatherTimeline>();
     std::string error;
-    if (!timeline->setSnapshots({cigiWeatherSnapshot(state, grid, geoid_, int64_t(std::floor(simTimeS)))}, error))
+    if (!timeline->setSnapshots({cigiWeatherSnapshot(fade_, nowS, grid, geoid_, int64_t(std::floor(simTimeS)))}, error))
     {
         report(kWeather, true, "the host's weather was not drawn: " + error);
         return nullptr;
     }
     report(kWeather, false, "");
-    weatherSignature_ = std::move(signature);
     weatherGrid_ = grid;
     weatherBuilt_ = true;
+    fadeSteps_ += lastBuildFading_ ? 1 : 0;
+    lastBuildFading_ = fading;
+    lastBuildS_ = nowS;
     ++weatherBuilds_;
     // The first at info; later ones at debug: a host that ramps a layer changes it every frame.
     logMessage(weatherBuilds_ == 1 ? LogLevel::Info : LogLevel::Debug,
-               "cigi: weather from the host: %zu cloud layer(s)%s on a %ux%u grid", timeline->snapshot(0).layers.size(),
-               timeline->snapshot(0).high.coverage.empty() ? "" : " + high cloud", grid.grid.nLat, grid.grid.nLon);
+               "cigi: weather from the host: %zu cloud layer(s)%s on a %ux%u grid%s",
+               timeline->snapshot(0).layers.size(), timeline->snapshot(0).high.coverage.empty() ? "" : " + high cloud",
+               grid.grid.nLat, grid.grid.nLon, fading ? " (fading in)" : "");
     return timeline;
+}
+
+std::shared_ptr<const WeatherTimeline> CigiApplier::weatherFor(const cigi::CigiState& state, ServiceState& s,
+                                                               const EyePose* pose, double nowS)
+{
+    double ownLat = 0, ownLon = 0, simTimeS = 0;
+    bool stepDrawn = false;
+    {
+        std::lock_guard<std::mutex> lock(s.mutex);
+        ownLat = pose ? pose->latDeg : s.view.pose.latDeg;
+        ownLon = pose ? pose->lonDeg : s.view.pose.lonDeg;
+        simTimeS = s.clock.nowUnixS();
+        stepDrawn = s.frameWeather.known && s.frameWeather.version >= publishedVersion_;
+    }
+    return weatherIfChanged(state, ownLat, ownLon, simTimeS, nowS, stepDrawn);
+}
+
+void CigiApplier::install(ServiceState& s, std::shared_ptr<const WeatherTimeline> weather)
+{
+    s.weather.timeline = std::move(weather);
+    s.weather.source = "cigi";
+    s.weather.lastError.clear();
+    publishedVersion_ = ++s.weather.version;
+}
+
+void CigiApplier::tick(const cigi::CigiState& state, ServiceState& s)
+{
+    tick(state, s, nowS());
+}
+
+void CigiApplier::tick(const cigi::CigiState& state, ServiceState& s, double nowS)
+{
+    if (!lastBuildFading_ || nowS - lastBuildS_ < kCigiFadeStepS)
+        return;
+    std::shared_ptr<const WeatherTimeline> weather = weatherFor(state, s, nullptr, nowS);
+    if (!weather)
+        return;
+    {
+        std::lock_guard<std::mutex> lock(s.mutex);
+        install(s, std::move(weather));
+    }
+    s.wake.notify_all();
 }
 
 void CigiApplier::applyTime(const cigi::CigiState& state, ServiceState& s)
@@ -91,7 +150,31 @@ void CigiApplier::applyTime(const cigi::CigiState& state, ServiceState& s)
     s.clock.rate = rate;
 }
 
+void CigiApplier::applyAir(const cigi::CigiState& state, ServiceState& s)
+{
+    // Caller holds s.mutex. The haze near the ground (skyservice/sky/atmosphere.h setHazeVisibility; 0: the
+    // clear atmosphere's) and the global ground fog (setGroundFog): a band at its height above mean sea level
+    // under the eye, all around the earth (the atmosphere is a sphere).
+    const cigi::AtmosphereState& air = state.atmosphere;
+    s.view.visibilityM = air.set && air.visibilityM > 0 ? double(air.visibilityM) : 0.0;
+    s.view.fogBaseM = s.view.fogTopM = s.view.fogVisibilityM = 0.0;
+    auto fog = state.globalLayers.find(0);
+    if (fog == state.globalLayers.end() || !fog->second.enabled || !(fog->second.thicknessM > 0) ||
+        !(fog->second.visibilityM > 0))
+        return;
+    const double n = geoid_.undulationM(s.view.pose.latDeg, s.view.pose.lonDeg);
+    const double undulationM = std::isfinite(n) ? n : 0.0;
+    s.view.fogBaseM = double(fog->second.baseElevationMslM) + undulationM;
+    s.view.fogTopM = s.view.fogBaseM + double(fog->second.thicknessM);
+    s.view.fogVisibilityM = double(fog->second.visibilityM);
+}
+
 void CigiApplier::apply(const cigi::CigiState& state, const cigi::DecodeResult& datagram, ServiceState& s)
+{
+    apply(state, datagram, s, nowS());
+}
+
+void CigiApplier::apply(const cigi::CigiState& state, const cigi::DecodeResult& datagram, ServiceState& s, double nowS)
 {
     if (!datagram.accepted)
         return;
@@ -108,14 +191,7 @@ void CigiApplier::apply(const cigi::CigiState& state, const cigi::DecodeResult& 
     const bool haveFrustum = defined && cigiFrustum(view->second, frustum, fovYDeg, viewWhy);
     report(kView, defined && !haveFrustum, "view not applied: " + viewWhy);
 
-    double ownLat = pose.latDeg, ownLon = pose.lonDeg, simTimeS = 0;
-    {
-        std::lock_guard<std::mutex> lock(s.mutex);
-        if (!havePose)
-            ownLat = s.view.pose.latDeg, ownLon = s.view.pose.lonDeg;
-        simTimeS = s.clock.nowUnixS();
-    }
-    std::shared_ptr<const WeatherTimeline> weather = weatherIfChanged(state, ownLat, ownLon, simTimeS);
+    std::shared_ptr<const WeatherTimeline> weather = weatherFor(state, s, havePose ? &pose : nullptr, nowS);
 
     {
         std::lock_guard<std::mutex> lock(s.mutex);
@@ -129,13 +205,9 @@ void CigiApplier::apply(const cigi::CigiState& state, const cigi::DecodeResult& 
         }
         if (contains<cigi::CelestialSphereControl>(datagram))
             applyTime(state, s);
+        applyAir(state, s);
         if (weather)
-        {
-            s.weather.timeline = std::move(weather);
-            s.weather.source = "cigi";
-            s.weather.lastError.clear();
-            ++s.weather.version;
-        }
+            install(s, std::move(weather));
         if (s.renderRateHz == 0)
             s.renderWantedUpTo = std::max(s.renderWantedUpTo, s.framesStarted + 1);
     }
@@ -145,6 +217,8 @@ void CigiApplier::apply(const cigi::CigiState& state, const cigi::DecodeResult& 
 nlohmann::json CigiApplier::statusJson() const
 {
     return {{"weather_builds", weatherBuilds_},
+            {"fade_steps", fadeSteps_},
+            {"fading", lastBuildFading_},
             {"regional_grid", weatherGrid_.regional},
             {"frustum_applied", frustumApplied_},
             {"pose_error", problems_[kPose].empty() ? nlohmann::json() : nlohmann::json(problems_[kPose])},

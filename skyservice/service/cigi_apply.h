@@ -4,6 +4,14 @@
 // one-snapshot weather timeline (source "cigi") swapped in through WeatherState, so the render loop stages
 // it off the frame path (weather_schedule.h) and draws it from the first frame after it is ready.
 //
+// A change of the host's weather fades in (cigi_weather_fade.h): while a fade is under way the snapshot of
+// what is drawn is remade every kCigiFadeStepS of IG time and swapped in like any other, the next step only
+// once the frames draw the last one (a step's window is made on the worker thread; staging faster than that
+// would only replace steps never drawn). Each swap drops the renderer's reprojection history, as every
+// weather swap does: the frame after a step marches its fresh pixels without history and sharpens over the
+// next 16 frames, so during a fade the clouds' fine detail is a little softer (the renderer has no blend of
+// two weathers within a frame, and a smaller step would only drop the history more often).
+//
 // One host datagram is one consistent update: everything it changes lands under one lock of
 // ServiceState's mutex, so a frame never draws half of it. The snapshot is built before that lock (and
 // only when what is drawn changed: hosts resend Weather Control every frame).
@@ -13,6 +21,7 @@
 #include "skyservice/cigi/cigi_state.h"
 #include "skyservice/cigi/geoid_undulation.h"
 #include "skyservice/service/cigi_weather.h"
+#include "skyservice/service/cigi_weather_fade.h"
 #include "skyservice/service/service_state.h"
 
 #include <nlohmann/json.hpp>
@@ -24,6 +33,10 @@
 namespace sky
 {
 
+/// While a fade is under way, its snapshot is remade this often (s of IG time): 20 steps over kCigiFadeS,
+/// each moving a layer's coverage by at most ~8 % of the change.
+inline constexpr double kCigiFadeStepS = 0.25;
+
 class CigiApplier
 {
   public:
@@ -32,7 +45,18 @@ class CigiApplier
 
     /// After `datagram` was applied to `state`: updates `service` (taking its mutex). With render rate 0
     /// every accepted datagram asks for one frame: the host paces the IG.
+    /// `nowS`: IG time (s, steady; the fades run on it); without it, the steady clock since construction.
     void apply(const cigi::CigiState& state, const cigi::DecodeResult& datagram, ServiceState& service);
+    void apply(const cigi::CigiState& state, const cigi::DecodeResult& datagram, ServiceState& service, double nowS);
+
+    /// Between datagrams: the next step of a fade under way, when one is due (a host that sent one change
+    /// and went quiet still sees it fade in).
+    void tick(const cigi::CigiState& state, ServiceState& service);
+    void tick(const cigi::CigiState& state, ServiceState& service, double nowS);
+    /// A fade is under way: call tick at least every kCigiFadeStepS.
+    bool fading() const { return lastBuildFading_; }
+    /// IG time now (s since construction).
+    double nowS() const;
 
     /// What was applied last, for the status reply.
     nlohmann::json statusJson() const;
@@ -40,9 +64,18 @@ class CigiApplier
   private:
     void applyView(const cigi::CigiState& state, ServiceState& service);
     void applyTime(const cigi::CigiState& state, ServiceState& service);
-    /// Builds the snapshot when what is drawn changed; null when nothing is to be swapped in.
+    /// Atmosphere Control's visibility and the global ground fog (layer 0) as the frame's haze and fog.
+    void applyAir(const cigi::CigiState& state, ServiceState& service);
+    /// Builds the snapshot when what is drawn changed or a fade step is due; null when nothing is to be
+    /// swapped in. `stepDrawn`: the frames draw the last snapshot published.
     std::shared_ptr<const WeatherTimeline> weatherIfChanged(const cigi::CigiState& state, double ownLatDeg,
-                                                            double ownLonDeg, double simTimeS);
+                                                            double ownLonDeg, double simTimeS, double nowS,
+                                                            bool stepDrawn);
+    /// weatherIfChanged with the ownship (pose, or the service's eye when null) and the service's clock.
+    std::shared_ptr<const WeatherTimeline> weatherFor(const cigi::CigiState& state, ServiceState& service,
+                                                      const EyePose* pose, double nowS);
+    /// Caller holds service.mutex.
+    void install(ServiceState& service, std::shared_ptr<const WeatherTimeline> weather);
     /// What can fail when applying: each is logged when it starts failing, not again until it has worked.
     enum Problem
     {
@@ -55,10 +88,14 @@ class CigiApplier
 
     uint16_t viewId_;
     const cigi::GeoidGrid& geoid_;
-    std::vector<double> weatherSignature_;
+    SteadyClock::time_point epoch_ = SteadyClock::now();
+    CigiWeatherFade fade_;
     CigiWeatherGrid weatherGrid_;
     bool weatherBuilt_ = false;
-    uint64_t weatherBuilds_ = 0;
+    bool lastBuildFading_ = false;  ///< the last snapshot built was a fade step: more are to come
+    double lastBuildS_ = 0;         ///< IG time of the last snapshot built (or of the change a fade began with)
+    uint64_t publishedVersion_ = 0; ///< WeatherState::version of the last snapshot swapped in
+    uint64_t weatherBuilds_ = 0, fadeSteps_ = 0;
     std::array<std::string, kProblemCount> problems_; ///< the current failure of each ("" = none)
     bool frustumApplied_ = false;
 };

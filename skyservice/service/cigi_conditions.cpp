@@ -40,11 +40,24 @@ uint8_t percent(double v)
 
 double clearAirVisibilityM(double altitudeM)
 {
-    const AtmosphereParams a = makeEarthAtmosphere(6371000.0);
+    return cigiAirVisibilityM(cigi::CigiState{}, altitudeM);
+}
+
+double cigiAirVisibilityM(const cigi::CigiState& state, double altitudeM)
+{
+    AtmosphereParams a = makeEarthAtmosphere(6371000.0);
+    const cigi::AtmosphereState& air = state.atmosphere;
+    if (air.set && air.visibilityM > 0) // as the frame draws it (CigiApplier::applyAir)
+        setHazeVisibility(a, double(air.visibilityM));
     const double h = std::max(0.0, altitudeM);
     // Green channel (550 nm): what the eye's contrast threshold is defined for.
-    const double extinction = double(a.rayleighScattering.y) * std::exp(-h / double(a.rayleighScattering.w)) +
-                              double(a.mieExtinction.y) * std::exp(-h / double(a.mieScattering.w));
+    double extinction = double(a.rayleighScattering.y) * std::exp(-h / double(a.rayleighScattering.w)) +
+                        double(a.mieExtinction.y) * std::exp(-h / double(a.mieScattering.w));
+    auto fog = state.globalLayers.find(0);
+    if (fog != state.globalLayers.end() && fog->second.enabled && fog->second.thicknessM > 0 &&
+        fog->second.visibilityM > 0 && altitudeM >= double(fog->second.baseElevationMslM) &&
+        altitudeM <= double(fog->second.baseElevationMslM) + double(fog->second.thicknessM))
+        extinction += kVisibilityOpticalDepth / double(fog->second.visibilityM);
     return kContrastFactor / extinction;
 }
 
@@ -111,7 +124,7 @@ cigi::WeatherConditionsResponse cigiWeatherConditions(const cigi::CigiState& sta
                 : 0.0f;
         return r;
     }
-    r.visibilityM = air.set && air.visibilityM > 0 ? air.visibilityM : float(clearAirVisibilityM(request.altMslM));
+    r.visibilityM = float(cigiAirVisibilityM(state, request.altMslM));
     r.humidityPct = air.set ? percent(air.humidityPct) : 0;
     if (air.set)
     {

@@ -20,7 +20,8 @@ namespace
 
 // A reply datagram stays under this size (UDP's limit is 65507 bytes); requests beyond it wait a frame.
 constexpr size_t kMaxReplyBytes = 60000;
-constexpr int kPollMs = 200; // how soon stop() is noticed
+constexpr int kPollMs = 200;                                // how soon stop() is noticed
+constexpr int kFadePollMs = int(kCigiFadeStepS * 1000 / 2); // while a fade is under way: its steps' pace
 
 std::string addressText(const sockaddr_in& a)
 {
@@ -77,9 +78,24 @@ void CigiLink::run()
 {
     while (!stop_.load())
     {
+        bool fading = false;
+        {
+            std::lock_guard<std::mutex> lock(applierMutex_);
+            fading = applier_->fading();
+        }
         pollfd p{fd_, POLLIN, 0};
-        if (poll(&p, 1, kPollMs) > 0)
+        if (poll(&p, 1, fading ? kFadePollMs : kPollMs) > 0)
             receive();
+        if (fading) // the next step of the fade, also when the host has gone quiet
+        {
+            cigi::CigiState snapshot;
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                snapshot = state_;
+            }
+            std::lock_guard<std::mutex> lock(applierMutex_);
+            applier_->tick(snapshot, *service_);
+        }
     }
 }
 
@@ -109,7 +125,7 @@ void CigiLink::receive()
             if (!datagram.accepted)
                 continue;
             cigi::applyDatagram(state_, datagram, uint16_t(config_.ownship));
-            // A destroyed region stops drawing at once (no fade-out yet): nothing to keep it for.
+            // A destroyed region is forgotten here; the applier's fade keeps what it drew until it faded out.
             cigi::pruneDestroyedRegions(state_, state_.lastHostFrame);
             if (!haveHost_ || host_.sin_addr.s_addr != from.sin_addr.s_addr)
                 SKY_LOG_INFO("cigi: host %s (%s-endian); replies go to its port %u", addressText(from).c_str(),

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/service/cigi_weather.h"
 
+#include "skyservice/service/cigi_weather_fade.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -37,7 +39,20 @@ bool highType(uint8_t type)
            type == uint8_t(CloudType::Cirrus);
 }
 
-CigiCloudAt fromLayer(const WeatherLayer& l)
+float lerp(float a, float b, float t)
+{
+    return a + (b - a) * t;
+}
+
+double wrapDeg(double deg)
+{
+    const double w = std::fmod(deg + 180.0, 360.0);
+    return (w < 0 ? w + 360.0 : w) - 180.0;
+}
+
+} // namespace
+
+CigiCloudAt cigiLayerFromHost(const WeatherLayer& l)
 {
     CigiCloudAt c;
     c.layerId = l.layerId;
@@ -55,13 +70,7 @@ CigiCloudAt fromLayer(const WeatherLayer& l)
     return c;
 }
 
-float lerp(float a, float b, float t)
-{
-    return a + (b - a) * t;
-}
-
-/// `region` over `current` with weight t (see cigi_weather.h).
-void blend(CigiCloudAt& current, const CigiCloudAt& region, float t)
+void cigiBlendLayer(CigiCloudAt& current, const CigiCloudAt& region, float t)
 {
     if (t <= 0)
         return;
@@ -90,18 +99,17 @@ void blend(CigiCloudAt& current, const CigiCloudAt& region, float t)
     current.set = true;
 }
 
-double wrapDeg(double deg)
+bool cigiSameDrawnLayer(const CigiCloudAt& a, const CigiCloudAt& b)
 {
-    const double w = std::fmod(deg + 180.0, 360.0);
-    return (w < 0 ? w + 360.0 : w) - 180.0;
+    return a.layerId == b.layerId && a.set == b.set && a.coverage == b.coverage && a.baseMslM == b.baseMslM &&
+           a.topMslM == b.topMslM && a.cloudType == b.cloudType && a.windEastMps == b.windEastMps &&
+           a.windNorthMps == b.windNorthMps;
 }
 
-bool activeWithLayers(const EnvironmentalRegion& r)
+bool cigiRegionDrawn(const EnvironmentalRegion& r)
 {
     return r.defined && r.state == RegionState::Active && !r.layers.empty();
 }
-
-} // namespace
 
 void cigiWindComponents(float speedMps, float fromDeg, float& eastMps, float& northMps)
 {
@@ -144,42 +152,25 @@ double cigiRegionWeight(const EnvironmentalRegion& r, double latDeg, double lonD
 
 CigiCloudsAt cigiCloudsAt(const CigiState& state, double latDeg, double lonDeg)
 {
-    CigiCloudsAt out;
-    for (uint8_t i = 0; i < 3; ++i)
-    {
-        out[i].layerId = uint8_t(i + 1);
-        auto it = state.globalLayers.find(uint8_t(i + 1));
-        if (it != state.globalLayers.end())
-            out[i] = fromLayer(it->second);
-    }
-    bool covered = false; // an earlier region reaches this point
-    for (const auto& [id, r] : state.regions)
-    {
-        if (!activeWithLayers(r))
-            continue;
-        const double w = cigiRegionWeight(r, latDeg, lonDeg);
-        if (w <= 0)
-            continue;
-        const float t = float(r.mergeWeather && covered ? 0.5 * w : w);
-        for (uint8_t i = 0; i < 3; ++i)
-        {
-            auto it = r.layers.find(uint8_t(i + 1));
-            if (it != r.layers.end())
-                blend(out[i], fromLayer(it->second), t);
-        }
-        covered = true;
-    }
-    return out;
+    CigiWeatherFade asSet; // the first target is drawn at once: no fade
+    asSet.setTarget(state, 0);
+    return asSet.cloudsAt(latDeg, lonDeg, 0);
 }
 
 CigiWeatherGrid cigiWeatherGrid(const CigiState& state, double ownLatDeg, double ownLonDeg)
 {
+    CigiWeatherFade asSet;
+    asSet.setTarget(state, 0);
+    return cigiWeatherGrid(asSet, ownLatDeg, ownLonDeg);
+}
+
+CigiWeatherGrid cigiWeatherGrid(const CigiWeatherFade& fade, double ownLatDeg, double ownLonDeg)
+{
     CigiWeatherGrid g;
     double spacingM = std::numeric_limits<double>::infinity();
-    for (const auto& [id, r] : state.regions)
+    for (const auto& [id, f] : fade.regions())
     {
-        if (!activeWithLayers(r))
-            continue;
+        const EnvironmentalRegion& r = f.shape;
         double feature = std::min(double(r.sizeXM), double(r.sizeYM));
         if (r.transitionPerimeterM > 0)
             feature = std::min(feature, double(r.transitionPerimeterM));
@@ -211,6 +202,14 @@ CigiWeatherGrid cigiWeatherGrid(const CigiState& state, double ownLatDeg, double
 
 WeatherSnapshot cigiWeatherSnapshot(const CigiState& state, const CigiWeatherGrid& where, const cigi::GeoidGrid& geoid,
                                     int64_t validTimeUnixS)
+{
+    CigiWeatherFade asSet;
+    asSet.setTarget(state, 0);
+    return cigiWeatherSnapshot(asSet, 0, where, geoid, validTimeUnixS);
+}
+
+WeatherSnapshot cigiWeatherSnapshot(const CigiWeatherFade& fade, double nowS, const CigiWeatherGrid& where,
+                                    const cigi::GeoidGrid& geoid, int64_t validTimeUnixS)
 {
     WeatherSnapshot w;
     w.grid = where.grid;
@@ -247,7 +246,7 @@ WeatherSnapshot cigiWeatherSnapshot(const CigiState& state, const CigiWeatherGri
         {
             const double lon = w.grid.lon0Deg + iLon * w.grid.dLonDeg;
             const size_t cell = w.grid.index(iLat, iLon);
-            const CigiCloudsAt clouds = cigiCloudsAt(state, lat, lon);
+            const CigiCloudsAt clouds = fade.cloudsAt(lat, lon, nowS);
             const double nM = geoid.undulationM(lat, lon);
             const float undulationM = std::isfinite(nM) ? float(nM) : 0.0f;
             for (size_t i = 0; i < 3; ++i)
@@ -287,33 +286,6 @@ WeatherSnapshot cigiWeatherSnapshot(const CigiState& state, const CigiWeatherGri
     if (anyHigh)
         w.high = std::move(high);
     return w;
-}
-
-std::vector<double> cigiWeatherSignature(const CigiState& state)
-{
-    std::vector<double> s;
-    auto layer = [&s](const WeatherLayer& l)
-    {
-        s.insert(s.end(), {double(l.layerId), double(l.enabled), double(l.cloudType), double(l.baseElevationMslM),
-                           double(l.thicknessM), double(l.coveragePct), double(l.horizontalWindMps),
-                           double(l.windDirectionDeg)});
-    };
-    for (const auto& [id, l] : state.globalLayers)
-        if (id >= 1 && id <= 3)
-            layer(l);
-    s.push_back(-1);
-    for (const auto& [id, r] : state.regions)
-    {
-        if (!activeWithLayers(r))
-            continue;
-        s.insert(s.end(), {double(id), double(r.mergeWeather), r.latDeg, r.lonDeg, double(r.sizeXM), double(r.sizeYM),
-                           double(r.cornerRadiusM), double(r.rotationDeg), double(r.transitionPerimeterM)});
-        for (const auto& [lid, l] : r.layers)
-            if (lid >= 1 && lid <= 3)
-                layer(l);
-        s.push_back(-2);
-    }
-    return s;
 }
 
 } // namespace sky

@@ -9,7 +9,8 @@
 // rectangle they fade back to them (smoothstep of the distance to the rounded rectangle). A region with
 // Merge Weather set is averaged with the regions before it where they overlap (half weight), one
 // without it wins ("use last"). A region's layer that is disabled clears that layer inside the region; a
-// layer the region does not mention stays global.
+// layer the region does not mention stays global. A change drawn while it fades in is composed the same way
+// (cigi_weather_fade.h).
 //
 // Cloud types follow the CIGI enumeration, which is the snapshot's CloudType numbering. Cirrocumulus,
 // cirrostratus and cirrus go to the snapshot's high (2D) cloud layer; None, the IG-defined types 11-15, a
@@ -22,7 +23,6 @@
 #include "weather_ingest/weather_snapshot.h"
 
 #include <array>
-#include <vector>
 
 namespace sky
 {
@@ -40,11 +40,29 @@ struct CigiCloudAt
 };
 using CigiCloudsAt = std::array<CigiCloudAt, 3>; ///< layers 1, 2, 3
 
+class CigiWeatherFade;
+
 /// True once the host has set any cloud layer (global or regional): from then on its weather is drawn.
 bool cigiHasCloudWeather(const cigi::CigiState& state);
 
-/// The cloud layers at a point (see the top of this file).
+/// The cloud layers at a point as the host set them (see the top of this file; what is drawn while a change
+/// fades in is CigiWeatherFade::cloudsAt).
 CigiCloudsAt cigiCloudsAt(const cigi::CigiState& state, double latDeg, double lonDeg);
+
+/// A host's Weather Control layer at a point where it applies (coverage 0 when it draws nothing).
+CigiCloudAt cigiLayerFromHost(const cigi::WeatherLayer& layer);
+
+/// Blends `layer` over `current` with weight t [0, 1]: coverage, altitudes and winds interpolate; over a
+/// layer with no cloud the blended one keeps its own altitudes and type (a cloud fades in where it will be),
+/// and a layer with no cloud blended over one keeps that one's (it fades out where it was).
+void cigiBlendLayer(CigiCloudAt& current, const CigiCloudAt& layer, float t);
+
+/// a and b draw the same cloud (coverage, altitudes, type, horizontal wind; humidity, aerosol and vertical
+/// wind are answered in responses, not drawn).
+bool cigiSameDrawnLayer(const CigiCloudAt& a, const CigiCloudAt& b);
+
+/// A region draws its layers: defined, Active, with at least one layer.
+bool cigiRegionDrawn(const cigi::EnvironmentalRegion& region);
 
 /// Weight [0, 1] of a region at a point: 1 inside the rounded rectangle, fading to 0 over its transition
 /// perimeter (0 at once outside when the perimeter is 0).
@@ -62,14 +80,15 @@ struct CigiWeatherGrid
     double centreLatDeg = 0, centreLonDeg = 0; ///< regional: the ownship when it was made
     double halfExtentM = 0;                    ///< regional: distance from the centre to the grid's edge
 };
+/// ... for the regions a fade still draws (fading out ones included).
+CigiWeatherGrid cigiWeatherGrid(const CigiWeatherFade& fade, double ownLatDeg, double ownLonDeg);
 CigiWeatherGrid cigiWeatherGrid(const cigi::CigiState& state, double ownLatDeg, double ownLonDeg);
 
-/// The snapshot of the host's weather on `grid`, valid at `validTimeUnixS`.
+/// The snapshot of the host's weather drawn at IG time nowS on `grid`, valid at `validTimeUnixS`.
+WeatherSnapshot cigiWeatherSnapshot(const CigiWeatherFade& fade, double nowS, const CigiWeatherGrid& grid,
+                                    const cigi::GeoidGrid& geoid, int64_t validTimeUnixS);
+/// ... of the host's weather as set (no fade under way).
 WeatherSnapshot cigiWeatherSnapshot(const cigi::CigiState& state, const CigiWeatherGrid& grid,
                                     const cigi::GeoidGrid& geoid, int64_t validTimeUnixS);
-
-/// The inputs of the drawn weather, flattened: equal signatures draw the same snapshot (hosts resend
-/// Weather Control every frame; only a change rebuilds it).
-std::vector<double> cigiWeatherSignature(const cigi::CigiState& state);
 
 } // namespace sky

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/sky/atmosphere.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
 // Layout checks for the structs shared with GLSL (STYLE §5): std140/std430 match the C++ layout only
 // while every member is a 16-byte vector.
-static_assert(sizeof(AtmosphereParams) == 8 * 16, "AtmosphereParams must stay 8 vec4");
+static_assert(sizeof(AtmosphereParams) == 9 * 16, "AtmosphereParams must stay 9 vec4");
 static_assert(offsetof(AtmosphereParams, radii) == 5 * 16, "AtmosphereParams.radii moved");
 static_assert(offsetof(AtmosphereParams, solarIrradiance) == 7 * 16, "AtmosphereParams.solarIrradiance moved");
 static_assert(sizeof(SkyViewPushConstants) == 5 * 16, "SkyViewPushConstants must stay 5 vec4");
@@ -38,6 +39,27 @@ AtmosphereParams makeEarthAtmosphere(double bottomRadiusM)
     // ASTM G-173 extraterrestrial spectrum.
     p.solarIrradiance = vec4(1.474f, 1.8504f, 1.91198f, 0.0f);
     return p;
+}
+
+void setHazeVisibility(AtmosphereParams& p, double visibilityM)
+{
+    // Beyond kVisibilityOpticalDepth / Rayleigh(550 nm) the air is clearer than clean air: no aerosol.
+    const double rayleigh550 = double(p.rayleighScattering.y);
+    const double extinction = std::max(kVisibilityOpticalDepth / visibilityM - rayleigh550, 0.0);
+    const double albedo = double(p.mieScattering.x) / double(p.mieExtinction.x);
+    const float e = float(extinction), s = float(extinction * albedo);
+    p.mieExtinction = vec4(e, e, e, p.mieExtinction.w);
+    p.mieScattering = vec4(s, s, s, p.mieScattering.w);
+}
+
+void setGroundFog(AtmosphereParams& p, double baseM, double topM, double visibilityM)
+{
+    if (!(visibilityM > 0.0) || !(topM > baseM))
+    {
+        p.groundFog = vec4(0.0f);
+        return;
+    }
+    p.groundFog = vec4(float(baseM), float(topM), float(kVisibilityOpticalDepth / visibilityM), 0.0f);
 }
 
 double moonIrradianceRelativeToSun(double phaseAngleDeg)

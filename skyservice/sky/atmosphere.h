@@ -27,6 +27,33 @@ inline constexpr double kMoonRadiusM = 1737400.0;
  **********************************************************************/
 AtmosphereParams makeEarthAtmosphere(double bottomRadiusM);
 
+/// Optical depth at which a black object's contrast against the horizon sky has fallen to 5 % (ln 20):
+/// the visibility of air of extinction e (1/m) is this / e (Koschmieder's law with the 5 % threshold of
+/// the WMO's meteorological optical range, which reported visibilities are; Koschmieder's 2 % gives 3.912).
+inline constexpr double kVisibilityOpticalDepth = 3.0;
+
+/**
+ * Sets the haze for a meteorological visibility near the ground: the aerosol (Mie) extinction at the
+ * bottom becomes what, added to the Rayleigh extinction at 550 nm, makes kVisibilityOpticalDepth /
+ * visibilityM, the same in the three channels (haze is nearly grey), with the model's single-scattering
+ * albedo (0.9) and scale height (1.2 km): the haze thins with altitude as the boundary layer's aerosol
+ * does. A visibility beyond what clean air's Rayleigh extinction allows (~220 km) leaves no aerosol; the
+ * clear atmosphere's own aerosol is a visibility of ~170 km.
+ *
+ * @param[in,out] p an atmosphere from makeEarthAtmosphere.
+ * @param[in] visibilityM > 0 (meters).
+ **********************************************************************/
+void setHazeVisibility(AtmosphereParams& p, double visibilityM);
+
+/**
+ * Adds ground fog: a band from baseM to topM (meters above the bottom of the atmosphere) whose own
+ * extinction is kVisibilityOpticalDepth / visibilityM (the visibility inside it, on top of the haze), all
+ * of it scattered, with the aerosol's phase function. The atmosphere is a sphere: the fog lies at that
+ * height all around the earth, as CIGI's global ground fog does. No fog when visibilityM <= 0 or
+ * topM <= baseM.
+ **********************************************************************/
+void setGroundFog(AtmosphereParams& p, double baseM, double topM, double visibilityM);
+
 /**
  * The moon's irradiance at the top of the atmosphere relative to the sun's, from its phase angle.
  * Apparent magnitude of the moon m = -12.73 + 0.026 |i| + 4e-9 i^4 (Allen's Astrophysical

@@ -259,10 +259,26 @@ TEST(CigiConditions, VisibilityTemperaturePressure)
     s.atmosphere.windDirectionDeg = 270;
     s.atmosphere.airTemperatureC = 15;
     s.atmosphere.pressureHpa = 1013.25f;
+    // The visibility is the sea-level one; the drawn haze thins above (Mie scale height 1.2 km, Rayleigh 8 km).
+    EXPECT_NEAR(cigiWeatherConditions(s, conditionsRequest(11, 45, 7, 0), 0.045).visibilityM, 8000.0f, 0.5f);
     WeatherConditionsResponse hazy = cigiWeatherConditions(s, conditionsRequest(11, 45, 7, 3000), 0.045);
-    EXPECT_FLOAT_EQ(hazy.visibilityM, 8000.0f);
+    const double rayleigh = 13.558e-6;
+    EXPECT_NEAR(hazy.visibilityM,
+                3.0 / (rayleigh * std::exp(-3.0 / 8.0) + (3.0 / 8000.0 - rayleigh) * std::exp(-3.0 / 1.2)), 20.0);
     EXPECT_FLOAT_EQ(hazy.horizontalWindMps, 12.0f);
     EXPECT_FLOAT_EQ(hazy.windDirectionDeg, 270.0f);
+
+    // Inside the global ground fog its extinction adds to the haze's; above it, none.
+    WeatherLayer& fog = s.globalLayers[0];
+    fog.layerId = 0;
+    fog.enabled = true;
+    fog.baseElevationMslM = 0;
+    fog.thicknessM = 200;
+    fog.visibilityM = 300;
+    EXPECT_NEAR(cigiWeatherConditions(s, conditionsRequest(11, 45, 7, 100), 0.045).visibilityM,
+                3.0 / (3.0 / 300.0 + 3.0 / 8000.0 * std::exp(-100.0 / 1200.0)), 1.0);
+    EXPECT_GT(cigiWeatherConditions(s, conditionsRequest(11, 45, 7, 250), 0.045).visibilityM, 8000.0f);
+    s.globalLayers.erase(0);
 
     std::vector<AerosolConcentrationResponse> lwc =
         cigiAerosolConcentrations(s, conditionsRequest(12, 45, 7, 1300, kRequestAerosol), 0.045);
@@ -274,7 +290,8 @@ TEST(CigiConditions, VisibilityTemperaturePressure)
 
 // One host datagram lands in the service's next frame: the eye, the frustum, the time (rate 1 with the
 // ephemeris), the weather (swapped in as source "cigi"), and a frame asked for at render rate 0. The same
-// weather resent is not rebuilt; a host resending the same minute does not pull the running clock back.
+// weather resent is not rebuilt, a changed one starts a fade; a host resending the same minute does not pull
+// the running clock back.
 TEST(CigiApply, DatagramDrivesTheNextFrame)
 {
     ServiceState service;
@@ -326,7 +343,9 @@ TEST(CigiApply, DatagramDrivesTheNextFrame)
     HostDatagram change(ByteOrder::Big, 102);
     change.add(cloudLayer(1, CloudType::Stratus, 1000, 600, 60)).add(celestialAt(6212026, 18, 30, false));
     send(change);
-    EXPECT_EQ(service.weather.version, version + 1);
+    // The weather change fades in (tests/cigi/cigi_fade_test.cpp): its first step is published a step later.
+    EXPECT_EQ(service.weather.version, version);
+    EXPECT_TRUE(applier.fading());
     EXPECT_DOUBLE_EQ(service.clock.baseUnixS, 1782043200.0 + 6.5 * 3600);
     EXPECT_DOUBLE_EQ(service.clock.rate, 0.0);
     EXPECT_EQ(service.clock.jumps, jumps + 1);
@@ -363,6 +382,56 @@ TEST(CigiApply, UndrawablePoseOrViewKeepsTheLastGoodOne)
     status = applier.statusJson();
     EXPECT_TRUE(status["pose_error"].is_null());
     EXPECT_TRUE(status["view_error"].is_null());
+}
+
+// Atmosphere Control's visibility becomes the haze the frame draws (ViewRequest::visibilityM: the aerosol
+// near the ground, tests/gpu/test_aerial_lut.cpp); 0 returns to the clear atmosphere; datagrams without
+// the packet leave it. The global ground fog becomes the frame's fog band.
+TEST(CigiApply, AtmosphereVisibilityAndGroundFogSetTheHaze)
+{
+    ServiceState service;
+    CigiState state;
+    Decoder decoder;
+    CigiApplier applier(0, egm96());
+    auto send = [&](const HostDatagram& d) {
+        DecodeResult r = decoder.decode(d.bytes().data(), d.bytes().size());
+        ASSERT_TRUE(r.accepted);
+        applyDatagram(state, r, 0);
+        applier.apply(state, r, service);
+    };
+    AtmosphereControl air;
+    air.visibilityM = 2000;
+    air.humidityPct = 90;
+    HostDatagram hazy(ByteOrder::Little, 1);
+    hazy.add(air);
+    send(hazy);
+    EXPECT_DOUBLE_EQ(service.view.visibilityM, 2000.0);
+    HostDatagram other(ByteOrder::Little, 2);
+    other.add(ownshipAt(0, 45, 7, 3000));
+    send(other);
+    EXPECT_DOUBLE_EQ(service.view.visibilityM, 2000.0);
+    air.visibilityM = 0;
+    HostDatagram clear(ByteOrder::Little, 3);
+    clear.add(air);
+    send(clear);
+    EXPECT_DOUBLE_EQ(service.view.visibilityM, 0.0);
+    EXPECT_DOUBLE_EQ(service.view.fogVisibilityM, 0.0);
+
+    // Global ground fog (layer 0): a band at its height above mean sea level under the eye, its visibility.
+    WeatherControl fog = cloudLayer(0, CloudType::None, 100, 200, 0);
+    fog.visibilityM = 300;
+    HostDatagram foggy(ByteOrder::Little, 4);
+    foggy.add(fog);
+    send(foggy);
+    const double n = egm96().undulationM(45, 7);
+    EXPECT_NEAR(service.view.fogBaseM, 100.0 + n, 1e-4);
+    EXPECT_NEAR(service.view.fogTopM, 300.0 + n, 1e-4);
+    EXPECT_DOUBLE_EQ(service.view.fogVisibilityM, 300.0);
+    fog.weatherEnable = false;
+    HostDatagram fogOff(ByteOrder::Little, 5);
+    fogOff.add(fog);
+    send(fogOff);
+    EXPECT_DOUBLE_EQ(service.view.fogVisibilityM, 0.0);
 }
 
 } // namespace

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
@@ -23,9 +24,44 @@ using namespace sky::testscenes;
 namespace
 {
 
+struct HorizonRows
+{
+    double sky = 0, ground = 0;
+    double contrast() const { return std::fabs(ground - sky) / sky; }
+};
+
 class AerialLut : public GpuFixture
 {
 protected:
+    /// Mean linear green of the horizon sky (1-3 degrees above the horizon) and of the ground 1-4 degrees
+    /// below it, seen level from `altM` at noon (32 x 18 pixels, 1.1 degrees a row); fog from the ground.
+    static HorizonRows horizonRows(double altM, double visibilityM, double fogTopM = 0, double fogVisibilityM = 0)
+    {
+        ViewRequest v = lookUp(45.0, 7.0, altM, 0.0, "2026-06-21T12:00:00Z");
+        v.width = 32;
+        v.height = 18;
+        v.fovYDeg = 20.0;  // the horizon between rows 8 and 9
+        v.visibilityM = visibilityM;
+        v.fogTopM = fogTopM;
+        v.fogVisibilityM = fogVisibilityM;
+        RenderResult r;
+        SkyStatus status = renderView(*renderer, v, testQuality(), r);
+        EXPECT_TRUE(status.ok()) << status.message;
+        EXPECT_EQ(r.linearRgbaHalf.size(), size_t(v.width) * v.height * 4);
+        auto rowsGreen = [&](uint32_t first, uint32_t last) {
+            double sum = 0;
+            for (uint32_t y = first; y <= last; ++y)
+                for (uint32_t x = 0; x < v.width; ++x)
+                    sum += double(glm::unpackHalf1x16(r.linearRgbaHalf[(size_t(y) * v.width + x) * 4 + 1]));
+            return sum / double((last - first + 1) * v.width);
+        };
+        HorizonRows h;
+        h.sky = rowsGreen(6, 7);
+        h.ground = rowsGreen(10, 12);
+        EXPECT_GT(h.sky, 0.0);
+        return h;
+    }
+
     static std::vector<glm::vec3> readLut(const Image& image)
     {
         std::vector<uint8_t> bytes;
@@ -133,4 +169,42 @@ TEST_F(AerialLut, LevelFlightKeepsTheLutsForManyFrames)
     EXPECT_LE(rebuilds, 3) << "of 30 frames at 250 m/s";
     SkyViewPushConstants far = pushAfter(20000.0);
     EXPECT_NE(std::memcmp(&far, &start, sizeof far), 0) << "20 km on";
+}
+
+// ViewRequest::visibilityM sets the haze (setHazeVisibility): seen from 300 m, the ground 4-15 km away
+// (1-4 degrees below the horizon) keeps a contrast against the horizon sky at 40 km of visibility and all
+// but loses it at 2 km (3 / 2 km of extinction leaves 0.2 % of it over 4 km). The transmittance LUT is
+// rebuilt for the new haze.
+TEST_F(AerialLut, VisibilityHazesTheDistantGround)
+{
+    setWeather(*renderer, WeatherSnapshot{});
+    const double clear = horizonRows(300.0, 40000.0).contrast();
+    const AtmosphereParams clearAir = renderer->skyViewAtmosphere;
+    const double hazy = horizonRows(300.0, 2000.0).contrast();
+    EXPECT_GT(renderer->skyViewAtmosphere.mieExtinction.y, 10.0f * clearAir.mieExtinction.y);
+    EXPECT_GT(clear, 0.1) << "the ground does not stand out from the sky at 40 km";
+    EXPECT_LT(hazy, 0.3 * clear) << "2 km of visibility did not haze the ground (contrast " << hazy << " vs "
+                                 << clear << " at 40 km)";
+    std::printf("ground contrast against the horizon sky: %.3f at 40 km, %.3f at 2 km\n", clear, hazy);
+}
+
+// Ground fog (ViewRequest::fog*, setGroundFog) is a band: from 150 m inside 300 m of fog with 300 m of
+// visibility the ground and the horizon sky are the same fog; from 1000 m, above it, the sky the eye sees
+// over the horizon never crosses the fog and stays as it was, while below the horizon the fog's top hides
+// the ground. (Seen from above, away from the sun, the fog's top is darker than the ground it hides: the
+// atmosphere model's multiple scattering, Hillaire's isotropic approximation on 32 altitude rows, does not
+// make a thick band of fog as bright as a cloud's top.)
+TEST_F(AerialLut, GroundFogIsABandOfExtinction)
+{
+    setWeather(*renderer, WeatherSnapshot{});
+    const double clearInside = horizonRows(150.0, 40000.0).contrast();
+    const double foggyInside = horizonRows(150.0, 40000.0, 300.0, 300.0).contrast();
+    EXPECT_LT(foggyInside, 0.3 * clearInside) << "inside the fog the ground still stands out";
+    const HorizonRows clearAbove = horizonRows(1000.0, 40000.0);
+    const HorizonRows foggyAbove = horizonRows(1000.0, 40000.0, 300.0, 300.0);
+    EXPECT_NEAR(foggyAbove.sky / clearAbove.sky, 1.0, 0.1) << "the fog reached above its top";
+    EXPECT_GT(std::fabs(foggyAbove.ground / clearAbove.ground - 1.0), 0.2) << "the fog's top does not hide the ground";
+    std::printf("fog: contrast inside %.3f (clear %.3f); from above: sky %.4f (clear %.4f), below the horizon "
+                "%.4f (clear %.4f)\n",
+                foggyInside, clearInside, foggyAbove.sky, clearAbove.sky, foggyAbove.ground, clearAbove.ground);
 }

@@ -112,8 +112,8 @@ struct CloudFrame
     }
 };
 
-/// Renders (client `render`) until the frame draws the host's weather ("cigi", ready) from an eye at
-/// `altM`, then returns the next frame.
+/// Renders (client `render`) until the frame draws the host's weather ("cigi", ready, faded in) from an
+/// eye at `altM`, then returns the next frame.
 bool settledFrame(Ig& ig, double altM, CloudFrame& out, std::string& error)
 {
     // A bound, not a measurement: the weather's window is made on a worker thread, slow on a loaded machine.
@@ -124,6 +124,7 @@ bool settledFrame(Ig& ig, double altM, CloudFrame& out, std::string& error)
         const nlohmann::json& w = s["weather"];
         const bool settled = w["frame"].is_object() && w["frame"]["source"] == "cigi" &&
                              w["frame"]["version"] == w["version"] && w["pending"] == false &&
+                             s["cigi"]["applied"]["fading"] == false &&
                              std::fabs(s["view"]["alt"].get<double>() - altM) < 0.01;
         uint64_t id = 0;
         if (sky_client_request_frame(ig.client, &id) != SKY_OK ||
@@ -280,7 +281,8 @@ TEST(ServiceCigi, EnvironmentalConditionsRequestsInBothByteOrders)
     EXPECT_EQ(ig.status()["cigi"]["responses_sent"].get<uint64_t>(), 3u);
 
     // The host thins the deck to 60 %: the answer follows (3 / (0.045 x 0.6) = 111 m), and the new weather
-    // reaches the frames through the worker thread, as a loaded file does: no frame makes its window.
+    // fades in over steps that reach the frames through the worker thread, as a loaded file does: no frame
+    // makes its window.
     CloudFrame frame;
     const double altM = 3000 + undulationM(kLat, kLon);
     ASSERT_TRUE(settledFrame(ig, altM, frame, error)) << error;
@@ -296,6 +298,7 @@ TEST(ServiceCigi, EnvironmentalConditionsRequestsInBothByteOrders)
     const nlohmann::json after = ig.status()["windows"];
     EXPECT_EQ(after["made_on_frame_path"], before["made_on_frame_path"]) << "the host's weather made a frame wait";
     EXPECT_GT(after["from_worker"].get<uint64_t>(), before["from_worker"].get<uint64_t>());
+    EXPECT_GT(ig.status()["cigi"]["applied"]["fade_steps"].get<uint64_t>(), 1u) << "the change did not fade in";
     EXPECT_EQ(ig.daemon.stop(), 0);
 }
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 
 namespace
@@ -428,3 +429,50 @@ TEST(AtmosphereLights, MoonIrradianceFollowsPhase)
 }
 
 }  // namespace
+
+// A visibility sets the aerosol at the ground so that Rayleigh + Mie at 550 nm is 3 / visibility (5 %
+// contrast left over that distance), grey, keeping the model's albedo, scale height and phase; beyond
+// what clean air allows there is no aerosol at all.
+TEST(AtmosphereHaze, VisibilitySetsTheGroundExtinction)
+{
+    const AtmosphereParams clear = sky::makeEarthAtmosphere(kBottomM);
+    for (double visibilityM : {2000.0, 40000.0})
+    {
+        AtmosphereParams p = clear;
+        sky::setHazeVisibility(p, visibilityM);
+        EXPECT_NEAR(double(p.rayleighScattering.y + p.mieExtinction.y) * visibilityM, sky::kVisibilityOpticalDepth,
+                    1e-5)
+            << visibilityM;
+        EXPECT_EQ(p.mieExtinction.x, p.mieExtinction.z);
+        EXPECT_NEAR(p.mieScattering.y / p.mieExtinction.y, clear.mieScattering.y / clear.mieExtinction.y, 1e-6);
+        EXPECT_EQ(p.mieScattering.w, clear.mieScattering.w);  // scale height
+        EXPECT_EQ(p.mieExtinction.w, clear.mieExtinction.w);  // phase asymmetry
+        EXPECT_EQ(std::memcmp(&p.rayleighScattering, &clear.rayleighScattering, sizeof(vec4)), 0);
+    }
+    AtmosphereParams p = clear;
+    sky::setHazeVisibility(p, 400000.0);
+    EXPECT_EQ(p.mieExtinction.y, 0.0f);
+    // The clear atmosphere's own aerosol is a visibility of 150-200 km.
+    const double clearVisibilityM =
+        sky::kVisibilityOpticalDepth / double(clear.rayleighScattering.y + clear.mieExtinction.y);
+    EXPECT_GT(clearVisibilityM, 150000.0);
+    EXPECT_LT(clearVisibilityM, 200000.0);
+}
+
+// Ground fog is a band of uniform extinction 3 / visibility (setGroundFog), ramping at its edges over a
+// tenth of its depth; none outside it, none when its visibility is 0.
+TEST(AtmosphereHaze, GroundFogIsABandOfExtinction)
+{
+    AtmosphereParams p = sky::makeEarthAtmosphere(kBottomM);
+    const glm::vec3 clear = glsl::extinctionAt(p, 150.0f);
+    sky::setGroundFog(p, 0.0, 300.0, 500.0);
+    EXPECT_NEAR(glsl::groundFogExtinction(p, 150.0f), 3.0f / 500.0f, 1e-7f);
+    EXPECT_NEAR(glsl::extinctionAt(p, 150.0f).y - clear.y, 3.0f / 500.0f, 1e-7f);
+    EXPECT_NEAR(glsl::mieScatteringAt(p, 150.0f).y - clear.y * 0.0f, 3.0f / 500.0f, 2e-5f);
+    EXPECT_GT(glsl::groundFogExtinction(p, 305.0f), 0.0f);  // the upper edge's ramp
+    EXPECT_EQ(glsl::groundFogExtinction(p, 321.0f), 0.0f);
+    EXPECT_EQ(glsl::groundFogExtinction(p, 2000.0f), 0.0f);
+    sky::setGroundFog(p, 0.0, 300.0, 0.0);
+    EXPECT_EQ(glsl::groundFogExtinction(p, 150.0f), 0.0f);
+    EXPECT_EQ(glsl::extinctionAt(p, 150.0f), clear);
+}
