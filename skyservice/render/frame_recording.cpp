@@ -71,7 +71,7 @@ void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, c
     // for nothing.
     const uint32_t marchGroupRows = (marchY + WORKGROUP_SIZE_2D - 1) / WORKGROUP_SIZE_2D;
     facts.marchRowOrder = prepareMarchOrder(r.marchOrder, cmd, marchGroupRows, r.marchDispatchRanges,
-                                            in.quality->costOrderedMarch);
+                                            r.tuning.costOrderedMarch);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, frame.timestamps, kTsStart);
     recordAtmosphere(r, cmd, camera, sunMoon, in);
     computeBarrier(cmd);

@@ -38,7 +38,7 @@ vec4 volumePlacement(const FrameParams& frame, double texelM)
 
 }  // namespace
 
-void placeLightVolume(const QualitySettings& quality, FrameParams& frame)
+void placeLightVolume(const QualitySettings& quality, const RenderTuning& tuning, FrameParams& frame)
 {
     frame.lightVolume = vec4(0.0f);
     frame.lightVolumeFar = vec4(0.0f);
@@ -50,13 +50,13 @@ void placeLightVolume(const QualitySettings& quality, FrameParams& frame)
         rays >= quality.lightVolumeMinRays)
     {
         frame.lightVolume = volumePlacement(frame, quality.lightVolumeTexelM);
-        if (quality.lightVolumeFarCascade)
+        if (tuning.lightVolumeFarCascade)
             frame.lightVolumeFar = volumePlacement(frame, quality.lightVolumeTexelM * LIGHT_VOLUME_FAR_SCALE);
     }
     // Where neither volume reaches, lit samples this close to the last cone that marched its far
     // samples take those (cloud_lighting.glsl ConeTail).
-    frame.lightVolume.w = float(std::max(quality.coneTailReuseM, 0.0));
-    frame.lightVolumeFar.w = float(std::max(quality.coneTailReuseBeyondM, 0.0));
+    frame.lightVolume.w = float(std::max(tuning.coneTailReuseM, 0.0));
+    frame.lightVolumeFar.w = float(std::max(tuning.coneTailReuseBeyondM, 0.0));
 }
 
 namespace

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "shaders/shared/frame_params.h"
+#include "skyservice/render/render_tuning.h"
 #include "skyservice/render/render_types.h"
 #include "skyservice/render/window_provider.h"
 #include "skyservice/vk/resources.h"
@@ -31,14 +32,14 @@ SkyStatus createLightVolume(Renderer& r);
 
 /**
  * Fills frame.lightVolume (and frame.lightVolumeFar, its cascade of LIGHT_VOLUME_FAR_SCALE times wider
- * texels, unless quality.lightVolumeFarCascade is false): the volume's corner on the window plane, snapped
+ * texels, unless tuning.lightVolumeFarCascade is false): the volume's corner on the window plane, snapped
  * to whole texels so that the
  * texels stay fixed to the ground while the eye moves in a window, and its texel size; z = 0 (no volume)
  * when the quality turns it off, when no cone sample is cheap (nothing to precompute) or when the frame
  * has no volumetric cloud, or marches fewer rays than quality.lightVolumeMinRays (frame.image.xy and the
  * march block frame.reprojection.x must be final).
  **********************************************************************/
-void placeLightVolume(const QualitySettings& quality, FrameParams& frame);
+void placeLightVolume(const QualitySettings& quality, const RenderTuning& tuning, FrameParams& frame);
 
 /// Records the pass that fills the volume for `frame`, then a barrier; nothing when frame.lightVolume.z
 /// is 0 or when the volume already holds these inputs (Renderer::lightVolumeKey).

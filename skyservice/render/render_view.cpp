@@ -114,6 +114,7 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
     in.eyeOnWindow = eyeOnWindow;
     in.request = &request;
     in.quality = &quality;
+    in.tuning = &r.tuning;
     in.animationTimeS = double(request.unixTimeS - r.weather->validTimeUnixS);
     {
         // The drift frame is anchored at the weather grid's centre: the same on every machine and for
@@ -141,7 +142,7 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
         r.reprojection.lastDropReason = useHistory ? "" : why;
         fillReprojectionParams(v.params, r.reprojection, request, v.camera, useHistory);
     }
-    placeLightVolume(quality, v.params);  // after the march block is known: it counts the rays
+    placeLightVolume(quality, r.tuning, v.params);  // after the march block is known: it counts the rays
     // The composite's optional outputs (frame_recording.h FrameOutputs).
     if (outputs.sky)
         v.params.image.w |= FRAME_FLAG_SKY_LAYER;

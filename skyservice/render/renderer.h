@@ -14,6 +14,7 @@
 #include "shaders/shared/atmosphere_params.h"
 #include "skyservice/earth/weather_window.h"
 #include "skyservice/render/frame_context.h"
+#include "skyservice/render/render_tuning.h"
 #include "skyservice/render/render_types.h"
 #include "skyservice/render/light_volume.h"
 #include "skyservice/render/march_order.h"
@@ -41,6 +42,8 @@ struct Renderer
 {
     Context ctx;
     MemoryTracker memory;
+    /// The experiment knobs (render_tuning.h): the defaults, unless a benchmark or a test sets them.
+    RenderTuning tuning;
 
     Program baseNoiseProgram, detailNoiseProgram, curlNoiseProgram;
     Program transmittanceProgram, multiscatterProgram, skyViewProgram, aerialPerspectiveProgram;

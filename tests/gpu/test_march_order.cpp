@@ -40,12 +40,12 @@ bool rowsHoldCloud(const RenderResult& r, uint32_t y0, uint32_t y1)
 TEST_F(MarchOrderGpu, CostliestFirstChangesNoPixelAndFollowsTheLastCount)
 {
     const ViewRequest v = builtinCumulonimbus320(*renderer);
-    QualitySettings interleaved = testQuality();
+    RenderTuning interleaved;
     interleaved.costOrderedMarch = false;
     QualitySettings costly = testQuality();
     const uint32_t rows = (180 + WORKGROUP_SIZE_2D - 1) / WORKGROUP_SIZE_2D;
 
-    RenderResult a = renderOk(v, interleaved);
+    RenderResult a = renderTuned(v, costly, interleaved);
     ASSERT_EQ(a.marchRowOrder, interleavedRowOrder(rows));
     ASSERT_EQ(a.marchRowLookups.size(), size_t(rows));
     RenderResult b = renderOk(v, costly);
