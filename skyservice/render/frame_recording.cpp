@@ -82,11 +82,11 @@ void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, c
     const Image& marchDepth = reprojected ? r.freshDepthImage : r.depthImage;
     dispatch(r.ctx, cmd, r.cloudProgram, marchX, marchY, 1, nullptr, 0,
              {DescriptorInfo(frame.frameUniforms), DescriptorInfo(frame.atmosphereUniforms),
-              DescriptorInfo(r.weatherWindowImage, r.linearClamp), DescriptorInfo(r.baseNoise, r.linearRepeat),
-              DescriptorInfo(r.detailNoise, r.linearRepeat), DescriptorInfo(r.curlNoise, r.linearRepeat),
-              DescriptorInfo(r.blueNoise, r.nearestRepeat), DescriptorInfo(r.transmittanceLut, r.linearClamp),
-              DescriptorInfo(marchCloud), DescriptorInfo(marchDepth), DescriptorInfo(r.lightVolume, r.linearClamp),
-              DescriptorInfo(r.columnBoundsImage, r.nearestRepeat), DescriptorInfo(r.lightVolumeFar, r.linearClamp),
+              DescriptorInfo(r.weatherWindowImage, r.linearClamp), DescriptorInfo(r.noise.base, r.linearRepeat),
+              DescriptorInfo(r.noise.detail, r.linearRepeat), DescriptorInfo(r.noise.curl, r.linearRepeat),
+              DescriptorInfo(r.noise.blue, r.nearestRepeat), DescriptorInfo(r.atmosphere.transmittanceLut, r.linearClamp),
+              DescriptorInfo(marchCloud), DescriptorInfo(marchDepth), DescriptorInfo(r.lightVolume.image, r.linearClamp),
+              DescriptorInfo(r.columnBoundsImage, r.nearestRepeat), DescriptorInfo(r.lightVolume.farImage, r.linearClamp),
               DescriptorInfo(r.marchOrder.buffer)});
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsClouds);

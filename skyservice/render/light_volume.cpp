@@ -11,15 +11,28 @@
 namespace sky
 {
 
-SkyStatus createLightVolume(Renderer& r)
+SkyStatus createLightVolumePass(const Context& ctx, MemoryTracker& memory, LightVolumePass& pass)
 {
+    SKY_TRY(createProgram(ctx, pass.program, "light_volume"));
     ImageDesc d;
     d.viewType = VK_IMAGE_VIEW_TYPE_3D;
     d.format = VK_FORMAT_R16_SFLOAT;  // transmittance: half floats keep 11 bits down to 6e-5, less to 6e-8
     d.width = d.height = LIGHT_VOLUME_SIZE;
     d.depth = LIGHT_VOLUME_LEVELS;
-    SKY_TRY(createImage(r.ctx, r.memory, r.lightVolume, d, "light volume"));
-    return createImage(r.ctx, r.memory, r.lightVolumeFar, d, "light volume, far cascade");
+    SKY_TRY(createImage(ctx, memory, pass.image, d, "light volume"));
+    SKY_TRY(createImage(ctx, memory, pass.farImage, d, "light volume, far cascade"));
+    OneShot shot;
+    SKY_TRY(beginOneShot(ctx, shot));
+    for (Image* img : {&pass.image, &pass.farImage})
+        transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    return endOneShot(ctx, shot);
+}
+
+void destroyLightVolumePass(const Context& ctx, MemoryTracker& memory, LightVolumePass& pass)
+{
+    destroyImage(ctx, memory, pass.image);
+    destroyImage(ctx, memory, pass.farImage);
+    destroyProgram(ctx, pass.program);
 }
 
 namespace
@@ -88,16 +101,17 @@ void recordLightVolume(Renderer& r, VkCommandBuffer cmd, const FrameParams& fram
     key.window = r.window ? r.window->key : WindowKey{};
     key.valid = true;
     // FrameParams is all vec4/uvec4 (std140 without padding): bytewise equality is field equality.
-    if (r.lightVolumeKey.valid && r.lightVolumeKey.window == key.window &&
-        std::memcmp(&r.lightVolumeKey.inputs, &key.inputs, sizeof(FrameParams)) == 0)
+    LightVolumePass& pass = r.lightVolume;
+    if (pass.key.valid && pass.key.window == key.window &&
+        std::memcmp(&pass.key.inputs, &key.inputs, sizeof(FrameParams)) == 0)
         return;
-    r.lightVolumeKey = key;
+    pass.key = key;
     for (uint32_t cascade = 0; cascade < (frame.lightVolumeFar.z > 0.0f ? 2u : 1u); ++cascade)
-        dispatch(r.ctx, cmd, r.lightVolumeProgram, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS, cascade,
+        dispatch(r.ctx, cmd, pass.program, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS, cascade,
                  {DescriptorInfo(recording(r).frameUniforms), DescriptorInfo(r.weatherWindowImage, r.linearClamp),
-                  DescriptorInfo(r.baseNoise, r.linearRepeat), DescriptorInfo(r.detailNoise, r.linearRepeat),
-                  DescriptorInfo(r.curlNoise, r.linearRepeat),
-                  DescriptorInfo(cascade == 0 ? r.lightVolume : r.lightVolumeFar)});
+                  DescriptorInfo(r.noise.base, r.linearRepeat), DescriptorInfo(r.noise.detail, r.linearRepeat),
+                  DescriptorInfo(r.noise.curl, r.linearRepeat),
+                  DescriptorInfo(cascade == 0 ? pass.image : pass.farImage)});
     computeBarrier(cmd);
 }
 

@@ -125,7 +125,7 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
         anchor.lonDeg = g.lon0Deg + 0.5 * g.dLonDeg * double(g.nLon > 0 ? g.nLon - 1 : 0);
         in.driftEnuToEcef = computeCameraFrame(anchor).enuToEcef;
     }
-    v.light = estimateLighting(r, v.camera, v.sunMoon, r.window->summary);
+    v.light = estimateLighting(r.atmosphere, v.camera, v.sunMoon, r.window->summary);
     // Pre-exposure: every light source is scaled by the exposure before it reaches the GPU, so that the
     // half-float images hold values near 1 by day and by moonlight alike (a full-moon sky is ~1e-7
     // W m^-2 sr^-1 nm^-1, below half precision). Linear outputs are divided by `exposure` for absolute units.
@@ -155,9 +155,8 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
 
 void forgetGpuCaches(Renderer& r)
 {
-    r.atmosphereRadiusM = 0;  // the LUTs recorded for a failed frame may never have been computed
-    r.lightVolumeKey.valid = false;  // nor the light volume
-    r.skyViewInputsValid = false;
+    forgetAtmosphereLuts(r.atmosphere);  // the LUTs recorded for a failed frame may never have been computed
+    r.lightVolume.key.valid = false;     // nor the light volume
 }
 
 // Records and submits frame `k` of `frames` (accumulation) into the next frame context.

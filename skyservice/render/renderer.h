@@ -11,19 +11,19 @@
 // Every function that can fail at run time returns a SkyStatus naming what failed.
 #pragma once
 
-#include "shaders/shared/atmosphere_params.h"
 #include "skyservice/earth/weather_window.h"
+#include "skyservice/render/atmosphere_passes.h"
 #include "skyservice/render/frame_context.h"
 #include "skyservice/render/render_tuning.h"
 #include "skyservice/render/render_types.h"
 #include "skyservice/render/light_volume.h"
 #include "skyservice/render/march_order.h"
+#include "skyservice/render/noise_textures.h"
 #include "skyservice/render/reprojection.h"
 #include "skyservice/render/shadow_map.h"
 #include "skyservice/render/weather_stage.h"
 #include "skyservice/render/window_analysis.h"
 #include "skyservice/render/window_provider.h"
-#include "skyservice/sky/atmosphere_reference.h"
 #include "skyservice/vk/programs.h"
 #include "weather_ingest/weather_snapshot.h"
 
@@ -45,18 +45,13 @@ struct Renderer
     /// The experiment knobs (render_tuning.h): the defaults, unless a benchmark or a test sets them.
     RenderTuning tuning;
 
-    Program baseNoiseProgram, detailNoiseProgram, curlNoiseProgram;
-    Program transmittanceProgram, multiscatterProgram, skyViewProgram, aerialPerspectiveProgram;
-    Program cloudProgram, compositeProgram, reconstructProgram, lightVolumeProgram;
+    NoiseTextures noise;          ///< noise_textures.h
+    AtmospherePass atmosphere;    ///< the sky's LUTs (atmosphere_passes.h)
+    LightVolumePass lightVolume;  ///< the far part of the light cones around the eye (light_volume.h)
+    Program cloudProgram, compositeProgram, reconstructProgram;
 
-    Image baseNoise, detailNoise, curlNoise, blueNoise;
-    Image transmittanceLut, multiscatterLut, skyViewLut;
-    Image aerialInscatterLut, aerialTransmittanceLut;  ///< 3D, AERIAL_LUT_* (atmosphere_params.h)
     Image weatherWindowImage;
     Image columnBoundsImage;  ///< the window's column-bounds pyramid (shaders/shared/column_bounds.h)
-    Image lightVolume;  ///< 3D, light_volume.h: the far part of the light cones around the eye
-    Image lightVolumeFar;  ///< its far cascade (LIGHT_VOLUME_FAR_SCALE times wider texels)
-    LightVolumeKey lightVolumeKey;  ///< what lightVolume holds (valid = false: nothing yet)
     MarchOrder marchOrder;  ///< the march's workgroup-row order and the lookups of the last march (march_order.h)
     uint32_t marchDispatchRanges = 1;  ///< contiguous ranges the device runs a dispatch in (dispatchRanges)
     Image cloudImage, depthImage, displayImage;
@@ -90,14 +85,6 @@ struct Renderer
     glm::dvec3 lastEyeEcefM{0.0};  ///< eye of the previous frame: its motion says which cell is next
     std::chrono::steady_clock::time_point lastFrameClock{};  ///< when the previous frame began (real time)
     double eyeSpeedMps = 0;        ///< estimate of the eye's horizontal speed: it sets the look-ahead
-    double atmosphereRadiusM = 0;  ///< bottom radius the transmittance/multiscatter LUTs were built for
-    /// The inputs the sky-view LUT was last built from (atmosphere_passes.cpp reuses it when equal).
-    SkyViewPushConstants skyViewPush{};
-    AtmosphereParams skyViewAtmosphere{};
-    bool skyViewInputsValid = false;
-    double noiseStartupMs = 0;     ///< GPU time to generate the noise textures
-    AtmosphereReference cpuAtmosphere;   ///< CPU copy of the atmosphere LUTs, for the lighting estimate
-    double cpuAtmosphereRadiusM = -1;    ///< ground radius cpuAtmosphere was built for
 };
 
 /// A frame submitted by submitView and not yet collected by finishView.

@@ -176,8 +176,8 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, frame.timestamps, kTsShadowBegin);
     dispatch(r.ctx, cmd, r.shadowPass.program, size, size, 1, push,
              {DescriptorInfo(frame.frameUniforms), DescriptorInfo(r.weatherWindowImage, r.linearClamp),
-              DescriptorInfo(r.baseNoise, r.linearRepeat), DescriptorInfo(r.detailNoise, r.linearRepeat),
-              DescriptorInfo(r.curlNoise, r.linearRepeat), DescriptorInfo(r.shadowPass.image)});
+              DescriptorInfo(r.noise.base, r.linearRepeat), DescriptorInfo(r.noise.detail, r.linearRepeat),
+              DescriptorInfo(r.noise.curl, r.linearRepeat), DescriptorInfo(r.shadowPass.image)});
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsShadowEnd);
     readback = ShadowMapReadback{};

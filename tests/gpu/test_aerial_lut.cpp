@@ -55,10 +55,10 @@ TEST_F(AerialLut, TexelsMatchTheRayIntegral)
         v.height = 18;
         renderOk(v, testQuality());
         // The inputs of the LUTs this frame used (kept by the renderer for its reuse check).
-        const AtmosphereReference cpu = createAtmosphereReference(renderer->skyViewAtmosphere);
-        const SkyViewPushConstants c = renderer->skyViewPush;
-        std::vector<glm::vec3> inscatter = readLut(renderer->aerialInscatterLut);
-        std::vector<glm::vec3> transmittance = readLut(renderer->aerialTransmittanceLut);
+        const AtmosphereReference cpu = createAtmosphereReference(renderer->atmosphere.skyViewAtmosphere);
+        const SkyViewPushConstants c = renderer->atmosphere.skyViewPush;
+        std::vector<glm::vec3> inscatter = readLut(renderer->atmosphere.aerialInscatterLut);
+        std::vector<glm::vec3> transmittance = readLut(renderer->atmosphere.aerialTransmittanceLut);
         ASSERT_EQ(inscatter.size(), size_t(AERIAL_LUT_WIDTH) * AERIAL_LUT_HEIGHT * AERIAL_LUT_SLICES);
 
         float worstInscatter = 0, worstTransmittance = 0;
@@ -94,8 +94,8 @@ TEST_F(AerialLut, HazeGrowsWithDistance)
     v.width = 32;
     v.height = 18;
     renderOk(v, testQuality());
-    std::vector<glm::vec3> inscatter = readLut(renderer->aerialInscatterLut);
-    std::vector<glm::vec3> transmittance = readLut(renderer->aerialTransmittanceLut);
+    std::vector<glm::vec3> inscatter = readLut(renderer->atmosphere.aerialInscatterLut);
+    std::vector<glm::vec3> transmittance = readLut(renderer->atmosphere.aerialTransmittanceLut);
     const int y = AERIAL_LUT_HEIGHT / 2 - 2;  // just above the horizon: the longest paths through the air
     for (int x = 0; x < AERIAL_LUT_WIDTH; x += 7)
         for (int k = 1; k < AERIAL_LUT_SLICES; ++k)
@@ -120,7 +120,7 @@ TEST_F(AerialLut, LevelFlightKeepsTheLutsForManyFrames)
         ViewRequest moved = v;
         moved.pose.latDeg += northM / 111132.0;
         renderOk(moved, testQuality());
-        return renderer->skyViewPush;
+        return renderer->atmosphere.skyViewPush;
     };
     SkyViewPushConstants start = pushAfter(0.0);
     int rebuilds = 0;

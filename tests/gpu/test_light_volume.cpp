@@ -123,7 +123,7 @@ TEST_F(LightVolume, KeptOnlyWhileItsInputsHold)
     ViewRequest b = a;
     b.pose.lonDeg += 0.025;  // ~2 km east: another corner, other texels
     auto fresh = [&](const ViewRequest& v) {
-        renderer->lightVolumeKey.valid = false;
+        renderer->lightVolume.key.valid = false;
         return renderOk(v, q);
     };
     RenderResult first = fresh(a);

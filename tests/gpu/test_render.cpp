@@ -281,7 +281,7 @@ TEST_F(GpuRender, ClearSkyMatchesCpuAtmosphere)
 TEST_F(GpuRender, BaseNoiseMatchesCpuCompiledShaderMath)
 {
     std::vector<uint8_t> texels;
-    SkyStatus s = readbackImage(renderer->ctx, renderer->memory, renderer->baseNoise, texels);
+    SkyStatus s = readbackImage(renderer->ctx, renderer->memory, renderer->noise.base, texels);
     ASSERT_TRUE(s.ok()) << s.message;
     ASSERT_EQ(texels.size(), size_t(BASE_NOISE_SIZE) * BASE_NOISE_SIZE * BASE_NOISE_SIZE * 4);
     for (uint32_t k = 0; k < 40; ++k)
