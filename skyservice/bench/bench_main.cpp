@@ -196,7 +196,7 @@ void fillDevice(const Renderer& r, BenchRun& run)
     run.driver = r.ctx.driverInfo;
     run.apiVersion = p.apiVersion;
     run.timestampPeriodNs = r.ctx.timestampPeriodNs;
-    for (const Program* program : {&r.cloudProgram, &r.reconstructProgram, &r.compositeProgram, &r.lightVolume.program})
+    for (const Program* program : {&r.march.program, &r.reconstruct.program, &r.composite.program, &r.lightVolume.program})
         if (!program->statistics.empty())
             run.pipelineStatistics[program->name] = program->statistics;
     switch (p.deviceType)

@@ -211,15 +211,4 @@ void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camer
               DescriptorInfo(a.aerialTransmittanceLut)});
 }
 
-void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request, const CompositeImages& images)
-{
-    dispatch(r.ctx, cmd, r.compositeProgram, request.width, request.height, 1, nullptr, 0,
-             {DescriptorInfo(recording(r).frameUniforms), DescriptorInfo(recording(r).atmosphereUniforms),
-              DescriptorInfo(r.atmosphere.transmittanceLut, r.linearClamp), DescriptorInfo(r.atmosphere.skyViewLut, r.linearRepeat),
-              DescriptorInfo(r.atmosphere.aerialInscatterLut, r.linearRepeat), DescriptorInfo(r.atmosphere.aerialTransmittanceLut, r.linearRepeat),
-              DescriptorInfo(*images.cloud), DescriptorInfo(*images.depth), DescriptorInfo(*images.history),
-              DescriptorInfo(*images.linear), DescriptorInfo(r.displayImage), DescriptorInfo(*images.sky),
-              DescriptorInfo(*images.cloudLayer), DescriptorInfo(*images.cloudOut), DescriptorInfo(*images.depthOut)});
-}
-
 }  // namespace sky

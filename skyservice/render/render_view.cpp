@@ -100,9 +100,9 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
     SKY_TRY(ensureOutputImages(r, request.width, request.height, outputs, quality.reprojected));
     if (quality.reprojected)
     {
-        r.reprojection.block =
+        r.reconstruct.reprojection.block =
             chooseMarchBlock(window, v.camera.eye.altitudeM, eyeOnWindow.offsetM, quality.insideCloudBlockPx);
-        SKY_TRY(ensureReprojectionImages(r, request.width, request.height, r.reprojection.block.blockPx));
+        SKY_TRY(ensureReprojectionImages(r, request.width, request.height, r.reconstruct.reprojection.block.blockPx));
     }
     SKY_TRY(prepareShadowMap(r, request));
 
@@ -138,9 +138,9 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
     if (quality.reprojected)
     {
         std::string why;
-        const bool useHistory = historyUsable(r.reprojection, request, v.camera, why);
-        r.reprojection.lastDropReason = useHistory ? "" : why;
-        fillReprojectionParams(v.params, r.reprojection, request, v.camera, useHistory);
+        const bool useHistory = historyUsable(r.reconstruct.reprojection, request, v.camera, why);
+        r.reconstruct.reprojection.lastDropReason = useHistory ? "" : why;
+        fillReprojectionParams(v.params, r.reconstruct.reprojection, request, v.camera, useHistory);
     }
     placeLightVolume(quality, r.tuning, v.params);  // after the march block is known: it counts the rays
     // The composite's optional outputs (frame_recording.h FrameOutputs).
@@ -211,14 +211,14 @@ void fillFacts(const Renderer& r, const PreparedView& v, const ViewRequest& requ
     facts.moonIsKeyLight = moonIsKeyLight(v.sunMoon);
     facts.weatherVersion = r.weatherVersion;
     facts.weatherValidTimeUnixS = r.weather->validTimeUnixS;
-    facts.marchBlockPx = quality.reprojected ? r.reprojection.block.blockPx : 1u;
-    facts.marchBlockReason = quality.reprojected ? r.reprojection.block.reason : "";
+    facts.marchBlockPx = quality.reprojected ? r.reconstruct.reprojection.block.blockPx : 1u;
+    facts.marchBlockReason = quality.reprojected ? r.reconstruct.reprojection.block.reason : "";
 }
 
 // The reprojection history after a reprojected frame was submitted: the next frame reprojects this one.
 void advanceHistory(Renderer& r, const ViewRequest& request, const CameraFrame& camera)
 {
-    ReprojectionHistory& h = r.reprojection;
+    ReprojectionHistory& h = r.reconstruct.reprojection;
     h.valid = true;
     h.current ^= 1u;
     h.frameIndex++;

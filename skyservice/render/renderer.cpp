@@ -4,7 +4,6 @@
 #include "shaders/shared/weather_window.h"
 #include "skyservice/render/column_bounds.h"
 
-#include <initializer_list>
 
 namespace sky
 {
@@ -24,17 +23,6 @@ SkyStatus createSampler(const Context& ctx, VkFilter filter, VkSamplerAddressMod
     VK_TRY(vkCreateSampler(ctx.device, &info, nullptr, &out));
     return SkyStatus::success();
 }
-
-// Moves freshly made images to the GENERAL layout, the one every pass uses.
-SkyStatus makeGeneral(const Context& ctx, std::initializer_list<Image*> images)
-{
-    OneShot shot;
-    SKY_TRY(beginOneShot(ctx, shot));
-    for (Image* img : images)
-        transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-    return endOneShot(ctx, shot);
-}
-
 }  // namespace
 
 SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
@@ -47,10 +35,9 @@ SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
     for (uint32_t i = 0; i < kFramesInFlight; ++i)
         SKY_TRY(createFrameContext(r.ctx, r.memory, r.frames[i], i));
 
-    const std::pair<Program*, const char*> programs[] = {
-        {&r.cloudProgram, "cloud_march"}, {&r.compositeProgram, "composite"}, {&r.reconstructProgram, "reconstruct"}};
-    for (const auto& [program, name] : programs)
-        SKY_TRY(createProgram(r.ctx, *program, name));
+    SKY_TRY(createMarchPass(r.ctx, r.memory, r.march));
+    SKY_TRY(createReconstructPass(r.ctx, r.reconstruct));
+    SKY_TRY(createCompositePass(r.ctx, r.memory, r.composite));
     SKY_TRY(createShadowMapPass(r.ctx, r.shadowPass));
 
     ImageDesc d;
@@ -66,19 +53,9 @@ SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
     d.height = WEATHER_WINDOW_SIZE;
     d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
     SKY_TRY(createImage(r.ctx, r.memory, r.columnBoundsImage, d, "weather column bounds"));
-    d = ImageDesc{};
-    d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-    SKY_TRY(createImage(r.ctx, r.memory, r.linearStandIn, d, "linear frame stand-in (1x1)"));
-    d.format = VK_FORMAT_R16G16B16A16_UINT;
-    SKY_TRY(createImage(r.ctx, r.memory, r.historyStandIn, d, "cloud history stand-in (1x1)"));
-    d.format = VK_FORMAT_R32_SFLOAT;
-    SKY_TRY(createImage(r.ctx, r.memory, r.depthStandIn, d, "cloud depth stand-in (1x1)"));
-    SKY_TRY(makeGeneral(r.ctx, {&r.linearStandIn, &r.historyStandIn, &r.depthStandIn}));
 
     SKY_TRY(createAtmospherePass(r.ctx, r.memory, r.atmosphere));
     SKY_TRY(createLightVolumePass(r.ctx, r.memory, r.lightVolume));
-    SKY_TRY(createMarchOrder(r.ctx, r.memory, r.marchOrder));
-    r.marchDispatchRanges = dispatchRanges(r.ctx);
     return createNoiseTextures(r.ctx, r.memory, r.noise, options.noiseSeed, recording(r).timestamps);
 }
 
@@ -92,17 +69,15 @@ void destroyRenderer(Renderer& r)
     vkDeviceWaitIdle(r.ctx.device);  // shutdown only
     for (FrameContext& frame : r.frames)
         destroyFrameContext(r.ctx, r.memory, frame);
-    for (Image* img : {&r.weatherWindowImage, &r.columnBoundsImage, &r.cloudImage, &r.depthImage, &r.linearImage,
-                       &r.displayImage, &r.freshCloudImage, &r.freshDepthImage, &r.history[0], &r.history[1],
-                       &r.linearStandIn, &r.historyStandIn, &r.depthStandIn, &r.skyImage, &r.cloudLayerImage})
+    for (Image* img : {&r.weatherWindowImage, &r.columnBoundsImage})
         destroyImage(r.ctx, r.memory, *img);
     destroyNoiseTextures(r.ctx, r.memory, r.noise);
     destroyAtmospherePass(r.ctx, r.memory, r.atmosphere);
     destroyLightVolumePass(r.ctx, r.memory, r.lightVolume);
+    destroyMarchPass(r.ctx, r.memory, r.march);
+    destroyReconstructPass(r.ctx, r.memory, r.reconstruct);
+    destroyCompositePass(r.ctx, r.memory, r.composite);
     destroyShadowMapPass(r.ctx, r.memory, r.shadowPass);
-    destroyMarchOrder(r.ctx, r.memory, r.marchOrder);
-    for (Program* p : {&r.cloudProgram, &r.compositeProgram, &r.reconstructProgram})
-        destroyProgram(r.ctx, *p);
     for (VkSampler* s : {&r.linearRepeat, &r.linearClamp, &r.nearestRepeat})
         if (*s)
             vkDestroySampler(r.ctx.device, *s, nullptr), *s = VK_NULL_HANDLE;
@@ -135,8 +110,8 @@ void cancelStagedWeather(Renderer& r) { cancelStage(r.weatherStage); }
 
 bool weatherStagePending(const Renderer& r) { return stagePending(r.weatherStage); }
 
-void dropHistory(Renderer& r) { r.reprojection.valid = false; }
+void dropHistory(Renderer& r) { r.reconstruct.reprojection.valid = false; }
 
-const std::string& lastHistoryDropReason(const Renderer& r) { return r.reprojection.lastDropReason; }
+const std::string& lastHistoryDropReason(const Renderer& r) { return r.reconstruct.reprojection.lastDropReason; }
 
 }  // namespace sky

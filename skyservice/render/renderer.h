@@ -13,13 +13,14 @@
 
 #include "skyservice/earth/weather_window.h"
 #include "skyservice/render/atmosphere_passes.h"
+#include "skyservice/render/composite_pass.h"
 #include "skyservice/render/frame_context.h"
 #include "skyservice/render/render_tuning.h"
 #include "skyservice/render/render_types.h"
 #include "skyservice/render/light_volume.h"
-#include "skyservice/render/march_order.h"
+#include "skyservice/render/march_pass.h"
 #include "skyservice/render/noise_textures.h"
-#include "skyservice/render/reprojection.h"
+#include "skyservice/render/reconstruct_pass.h"
 #include "skyservice/render/shadow_map.h"
 #include "skyservice/render/weather_stage.h"
 #include "skyservice/render/window_analysis.h"
@@ -48,30 +49,18 @@ struct Renderer
     NoiseTextures noise;          ///< noise_textures.h
     AtmospherePass atmosphere;    ///< the sky's LUTs (atmosphere_passes.h)
     LightVolumePass lightVolume;  ///< the far part of the light cones around the eye (light_volume.h)
-    Program cloudProgram, compositeProgram, reconstructProgram;
+    MarchPass march;              ///< the cloud march and its full-resolution images (march_pass.h)
+    ReconstructPass reconstruct;  ///< reprojection's reconstruct pass and history (reconstruct_pass.h)
+    CompositePass composite;      ///< the display image and the other outputs (composite_pass.h)
+    ShadowMapPass shadowPass;     ///< shadow_map.h
 
     Image weatherWindowImage;
     Image columnBoundsImage;  ///< the window's column-bounds pyramid (shaders/shared/column_bounds.h)
-    MarchOrder marchOrder;  ///< the march's workgroup-row order and the lookups of the last march (march_order.h)
-    uint32_t marchDispatchRanges = 1;  ///< contiguous ranges the device runs a dispatch in (dispatchRanges)
-    Image cloudImage, depthImage, displayImage;
-    Image skyImage, cloudLayerImage;  ///< compositing layers, only while frames ask for them (kReadSky, kReadCloudLayer)
-    Image linearImage;  ///< only while frames ask for it (QualitySettings::linearOutput)
-    // Reprojection (created on the first reprojected frame): the marched pixels at block resolution
-    // (the size of the block in use), and the reconstructed cloud radiance, alpha and depth of the last
-    // two frames (ping-pong), packed in one 64-bit texel (shaders/lib/cloud_history.glsl).
-    Image freshCloudImage, freshDepthImage;
-    Image history[2];
-    // 1x1 images bound where a pass has nothing to read or write (every binding needs an image):
-    // the linear frame when none is asked for, the history in full-resolution frames.
-    Image linearStandIn, historyStandIn, depthStandIn;
-    ReprojectionHistory reprojection;
     /// The per-frame objects (frame_context.h), used in turn; frames[currentFrame] is the one being
     /// recorded, or the last one submitted.
     FrameContext frames[kFramesInFlight];
     uint32_t currentFrame = 0;
     VkSampler linearRepeat = VK_NULL_HANDLE, linearClamp = VK_NULL_HANDLE, nearestRepeat = VK_NULL_HANDLE;
-    ShadowMapPass shadowPass;
 
     std::shared_ptr<const WeatherSnapshot> weather;  ///< shared with the window worker thread
     uint64_t weatherVersion = 0;  ///< of `weather`: a new one per setWeather or staged weather swapped in
