@@ -18,7 +18,8 @@ struct CompositePass
     Program program;
     Image displayImage;  ///< tone-mapped sRGB, every frame (frame_images.h makes the frame-size images)
     Image linearImage;   ///< only while frames ask for it (QualitySettings::linearOutput)
-    Image skyImage, cloudLayerImage;  ///< compositing layers, only while frames ask for them (kReadSky, kReadCloudLayer)
+    /// Compositing layers, only while frames ask for them (kReadSky, kReadCloudLayer).
+    Image skyImage, cloudLayerImage;
     // 1x1 images bound where a pass has nothing to read or write (every binding needs an image): the
     // optional outputs when none is asked for, the history in full-resolution frames.
     Image linearStandIn, historyStandIn, depthStandIn;

@@ -98,7 +98,7 @@ void recordLightVolume(Renderer& r, VkCommandBuffer cmd, const FrameParams& fram
         return;
     LightVolumeKey key;
     key.inputs = lightVolumeInputs(frame);
-    key.window = r.window ? r.window->key : WindowKey{};
+    key.window = r.weather.window ? r.weather.window->key : WindowKey{};
     key.valid = true;
     // FrameParams is all vec4/uvec4 (std140 without padding): bytewise equality is field equality.
     LightVolumePass& pass = r.lightVolume;
@@ -108,7 +108,7 @@ void recordLightVolume(Renderer& r, VkCommandBuffer cmd, const FrameParams& fram
     pass.key = key;
     for (uint32_t cascade = 0; cascade < (frame.lightVolumeFar.z > 0.0f ? 2u : 1u); ++cascade)
         dispatch(r.ctx, cmd, pass.program, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS, cascade,
-                 {DescriptorInfo(recording(r).frameUniforms), DescriptorInfo(r.weatherWindowImage, r.linearClamp),
+                 {DescriptorInfo(recording(r).frameUniforms), DescriptorInfo(r.weather.windowImage, r.linearClamp),
                   DescriptorInfo(r.noise.base, r.linearRepeat), DescriptorInfo(r.noise.detail, r.linearRepeat),
                   DescriptorInfo(r.noise.curl, r.linearRepeat),
                   DescriptorInfo(cascade == 0 ? pass.image : pass.farImage)});

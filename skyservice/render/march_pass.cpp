@@ -27,11 +27,12 @@ void recordMarch(Renderer& r, const FrameContext& frame, VkCommandBuffer cmd, ui
 {
     dispatch(r.ctx, cmd, r.march.program, marchX, marchY, 1, nullptr, 0,
              {DescriptorInfo(frame.frameUniforms), DescriptorInfo(frame.atmosphereUniforms),
-              DescriptorInfo(r.weatherWindowImage, r.linearClamp), DescriptorInfo(r.noise.base, r.linearRepeat),
+              DescriptorInfo(r.weather.windowImage, r.linearClamp), DescriptorInfo(r.noise.base, r.linearRepeat),
               DescriptorInfo(r.noise.detail, r.linearRepeat), DescriptorInfo(r.noise.curl, r.linearRepeat),
-              DescriptorInfo(r.noise.blue, r.nearestRepeat), DescriptorInfo(r.atmosphere.transmittanceLut, r.linearClamp),
+              DescriptorInfo(r.noise.blue, r.nearestRepeat),
+              DescriptorInfo(r.atmosphere.transmittanceLut, r.linearClamp),
               DescriptorInfo(cloud), DescriptorInfo(depth), DescriptorInfo(r.lightVolume.image, r.linearClamp),
-              DescriptorInfo(r.columnBoundsImage, r.nearestRepeat),
+              DescriptorInfo(r.weather.columnBoundsImage, r.nearestRepeat),
               DescriptorInfo(r.lightVolume.farImage, r.linearClamp), DescriptorInfo(r.march.order.buffer)});
     computeBarrier(cmd);
 }

@@ -93,7 +93,7 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
     v.camera = computeCameraFrame(request.pose);
     v.sunMoon = computeSunMoon(request.unixTimeS, v.camera.eye.latDeg, v.camera.eye.lonDeg, v.camera.eye.altitudeM);
     SKY_TRY(updateWeatherWindow(r, v.camera, quality));  // swaps a staged weather in when it is ready
-    const WeatherWindow& window = r.window->window;
+    const WeatherWindow& window = r.weather.window->window;
     const EyeOnWindow eyeOnWindow =
         placeEyeOnWindow(window.centreLatDeg, window.centreLonDeg, v.camera.eye.latDeg, v.camera.eye.lonDeg);
     const FrameOutputs outputs = FrameOutputs::of(request, quality);
@@ -110,22 +110,22 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
     in.camera = &v.camera;
     in.sunMoon = &v.sunMoon;
     in.window = &window;
-    in.summary = &r.window->summary;
+    in.summary = &r.weather.window->summary;
     in.eyeOnWindow = eyeOnWindow;
     in.request = &request;
     in.quality = &quality;
     in.tuning = &r.tuning;
-    in.animationTimeS = double(request.unixTimeS - r.weather->validTimeUnixS);
+    in.animationTimeS = double(request.unixTimeS - r.weather.snapshot->validTimeUnixS);
     {
         // The drift frame is anchored at the weather grid's centre: the same on every machine and for
         // every eye position (multi-channel seams, no sliding when flying).
-        const LatLonGrid& g = r.weather->grid;
+        const LatLonGrid& g = r.weather.snapshot->grid;
         EyePose anchor;
         anchor.latDeg = std::clamp(g.lat0Deg + 0.5 * g.dLatDeg * double(g.nLat > 0 ? g.nLat - 1 : 0), -90.0, 90.0);
         anchor.lonDeg = g.lon0Deg + 0.5 * g.dLonDeg * double(g.nLon > 0 ? g.nLon - 1 : 0);
         in.driftEnuToEcef = computeCameraFrame(anchor).enuToEcef;
     }
-    v.light = estimateLighting(r.atmosphere, v.camera, v.sunMoon, r.window->summary);
+    v.light = estimateLighting(r.atmosphere, v.camera, v.sunMoon, r.weather.window->summary);
     // Pre-exposure: every light source is scaled by the exposure before it reaches the GPU, so that the
     // half-float images hold values near 1 by day and by moonlight alike (a full-moon sky is ~1e-7
     // W m^-2 sr^-1 nm^-1, below half precision). Linear outputs are divided by `exposure` for absolute units.
@@ -209,8 +209,8 @@ void fillFacts(const Renderer& r, const PreparedView& v, const ViewRequest& requ
     facts.moonIlluminatedFraction = v.sunMoon.moonIlluminatedFraction;
     facts.exposure = v.light.exposure;
     facts.moonIsKeyLight = moonIsKeyLight(v.sunMoon);
-    facts.weatherVersion = r.weatherVersion;
-    facts.weatherValidTimeUnixS = r.weather->validTimeUnixS;
+    facts.weatherVersion = r.weather.version;
+    facts.weatherValidTimeUnixS = r.weather.snapshot->validTimeUnixS;
     facts.marchBlockPx = quality.reprojected ? r.reconstruct.reprojection.block.blockPx : 1u;
     facts.marchBlockReason = quality.reprojected ? r.reconstruct.reprojection.block.reason : "";
 }

@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/renderer.h"
 
-#include "shaders/shared/weather_window.h"
-#include "skyservice/render/column_bounds.h"
-
 
 namespace sky
 {
@@ -40,19 +37,7 @@ SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
     SKY_TRY(createCompositePass(r.ctx, r.memory, r.composite));
     SKY_TRY(createShadowMapPass(r.ctx, r.shadowPass));
 
-    ImageDesc d;
-    d.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-    d.format = VK_FORMAT_R16G16B16A16_SFLOAT;  // window_provider.h says why half floats
-    d.width = d.height = WEATHER_WINDOW_SIZE;
-    d.layers = WEATHER_GPU_SLICES;
-    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
-    SKY_TRY(createImage(r.ctx, r.memory, r.weatherWindowImage, d, "weather window"));
-    d = ImageDesc{};
-    d.format = VK_FORMAT_R8G8_UINT;  // shaders/shared/column_bounds.h
-    d.width = columnBoundsWidth(WEATHER_WINDOW_SIZE);
-    d.height = WEATHER_WINDOW_SIZE;
-    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
-    SKY_TRY(createImage(r.ctx, r.memory, r.columnBoundsImage, d, "weather column bounds"));
+    SKY_TRY(createWeatherImages(r.ctx, r.memory, r.weather));
 
     SKY_TRY(createAtmospherePass(r.ctx, r.memory, r.atmosphere));
     SKY_TRY(createLightVolumePass(r.ctx, r.memory, r.lightVolume));
@@ -69,8 +54,7 @@ void destroyRenderer(Renderer& r)
     vkDeviceWaitIdle(r.ctx.device);  // shutdown only
     for (FrameContext& frame : r.frames)
         destroyFrameContext(r.ctx, r.memory, frame);
-    for (Image* img : {&r.weatherWindowImage, &r.columnBoundsImage})
-        destroyImage(r.ctx, r.memory, *img);
+    destroyWeatherImages(r.ctx, r.memory, r.weather);
     destroyNoiseTextures(r.ctx, r.memory, r.noise);
     destroyAtmospherePass(r.ctx, r.memory, r.atmosphere);
     destroyLightVolumePass(r.ctx, r.memory, r.lightVolume);
@@ -86,16 +70,16 @@ void destroyRenderer(Renderer& r)
 
 void setWeather(Renderer& r, const WeatherSnapshot& snapshot)
 {
-    r.weather = std::make_shared<const WeatherSnapshot>(snapshot);
-    r.weatherVersion = ++r.weatherVersionsIssued;
-    cancelStage(r.weatherStage);  // older than this one
+    r.weather.snapshot = std::make_shared<const WeatherSnapshot>(snapshot);
+    r.weather.version = ++r.weather.versionsIssued;
+    cancelStage(r.weather.stage);  // older than this one
     dropHistory(r);  // the previous frame shows other clouds
 }
 
 uint64_t stageWeather(Renderer& r, WeatherMaker make, StageSwap swap)
 {
-    const uint64_t version = ++r.weatherVersionsIssued;
-    stage(r.weatherStage, version, std::move(make), swap);
+    const uint64_t version = ++r.weather.versionsIssued;
+    stage(r.weather.stage, version, std::move(make), swap);
     return version;
 }
 
@@ -104,11 +88,11 @@ uint64_t stageWeather(Renderer& r, std::shared_ptr<const WeatherSnapshot> snapsh
     return stageWeather(r, [snapshot = std::move(snapshot)] { return snapshot; }, swap);
 }
 
-void releaseStagedWeather(Renderer& r) { releaseStage(r.weatherStage); }
+void releaseStagedWeather(Renderer& r) { releaseStage(r.weather.stage); }
 
-void cancelStagedWeather(Renderer& r) { cancelStage(r.weatherStage); }
+void cancelStagedWeather(Renderer& r) { cancelStage(r.weather.stage); }
 
-bool weatherStagePending(const Renderer& r) { return stagePending(r.weatherStage); }
+bool weatherStagePending(const Renderer& r) { return stagePending(r.weather.stage); }
 
 void dropHistory(Renderer& r) { r.reconstruct.reprojection.valid = false; }
 

@@ -175,7 +175,7 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
     VkCommandBuffer cmd = frame.cmd;
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, frame.timestamps, kTsShadowBegin);
     dispatch(r.ctx, cmd, r.shadowPass.program, size, size, 1, push,
-             {DescriptorInfo(frame.frameUniforms), DescriptorInfo(r.weatherWindowImage, r.linearClamp),
+             {DescriptorInfo(frame.frameUniforms), DescriptorInfo(r.weather.windowImage, r.linearClamp),
               DescriptorInfo(r.noise.base, r.linearRepeat), DescriptorInfo(r.noise.detail, r.linearRepeat),
               DescriptorInfo(r.noise.curl, r.linearRepeat), DescriptorInfo(r.shadowPass.image)});
     computeBarrier(cmd);
@@ -205,7 +205,7 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
     }
     facts.shadowMapSize = size;
     facts.shadowMap = shadowMapMetadata(g, sunMoon, camera.localEarthRadiusM, request.unixTimeS,
-                                        r.weather->validTimeUnixS);
+                                        r.weather.snapshot->validTimeUnixS);
     ShadowMapReference& ref = facts.shadowReference;
     ref.centreLatDeg = g.centreLatDeg;
     ref.centreLonDeg = g.centreLonDeg;

@@ -116,7 +116,7 @@ SkyStatus prepareShadowMap(Renderer& r, const ViewRequest& request);
 /**
  * Record the shadow map of the frame into its command buffer, and the copies of its texels.
  *
- * @param[in,out] r the renderer; the frame's uniforms, r.window and r.weatherWindowImage must hold the frame.
+ * @param[in,out] r the renderer; the frame's uniforms, r.weather.window and r.weather.windowImage must hold the frame.
  * @param[in,out] frame the frame context being recorded (its readback buffer must have room:
  *   frameReadbackBytes counts the shadow map).
  * @param[in] request the view (shadowMapSize, shadowMapExtentM; validated; readback bits).
