@@ -51,6 +51,10 @@ set_tests_properties(cli.render.frustum_sidecar PROPERTIES DEPENDS cli.render.fr
 file(WRITE ${SKY_CLI_TMP}/bad-key.toml "[march]\nmax_view_step = 10\n")
 add_test(NAME cli.config.unknown_key COMMAND ${SKY_EXPECT} 2 "march.max_view_step" ${SKY_BIN} render
          --config ${SKY_CLI_TMP}/bad-key.toml)
+# A key of an earlier version that became an experiment's knob (render_tuning.h) is refused, named, as removed.
+file(WRITE ${SKY_CLI_TMP}/removed-key.toml "[lighting]\ncone_tail_reuse_m = 200.0\n")
+add_test(NAME cli.config.removed_key COMMAND ${SKY_EXPECT} 2 "lighting.cone_tail_reuse_m' was removed"
+         ${SKY_BIN} render --config ${SKY_CLI_TMP}/removed-key.toml)
 # A value out of range is refused with the range.
 file(WRITE ${SKY_CLI_TMP}/bad-range.toml "[lighting]\nphase_forward_g = 1.5\n")
 add_test(NAME cli.config.out_of_range COMMAND ${SKY_EXPECT} 2 "phase_forward_g.*outside" ${SKY_BIN} render

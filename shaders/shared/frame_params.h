@@ -73,7 +73,7 @@ struct FrameParams
     // The light volume (light_volume.h): xy: window-plane position (m) of its corner texel's corner; z:
     // texel size (m), 0 when there is none this frame (its tail starts after marchLod.w samples); w: where
     // no volume reaches, a lit sample within this distance (m) of the last cone that marched its far
-    // samples takes those (0: never; QualitySettings::coneTailReuseM, cloud_lighting.glsl ConeTail).
+    // samples takes those (0: never; RenderTuning::coneTailReuseM, cloud_lighting.glsl ConeTail).
     vec4 lightVolume;
     // x: view samples behind a transmittance below this take the base shape without detail erosion (0:
     // never; QualitySettings::detailMinTransmittance); y: those samples step this many times further; z: a
@@ -82,7 +82,7 @@ struct FrameParams
     vec4 detailLod;
     // The light volume's far cascade (light_volume.h), as lightVolume: xy corner, z texel size (m; 0: none);
     // w: only lit samples farther than this from the eye (m) take an earlier cone's far samples
-    // (QualitySettings::coneTailReuseBeyondM).
+    // (RenderTuning::coneTailReuseBeyondM).
     vec4 lightVolumeFar;
 };
 

@@ -39,9 +39,7 @@ std::map<std::string, Key> keys()
         {"march.reprojected", flag(&QualitySettings::reprojected)},
         {"march.max_step_optical_depth", real(&QualitySettings::maxStepOpticalDepth, 0, 100)},
         {"march.deep_step_factor", real(&QualitySettings::deepStepFactor, 1, 8)},
-        {"march.empty_space_skipping", flag(&QualitySettings::emptySpaceSkipping)},
         {"march.inside_cloud_block_px", u32(&QualitySettings::insideCloudBlockPx, 1, 2)},
-        {"march.cost_ordered_rows", flag(&QualitySettings::costOrderedMarch)},
         {"lighting.octaves", u32(&QualitySettings::octaves, 1, 8)},
         {"lighting.octave_attenuation", real(&QualitySettings::octaveAttenuation, 0, 1)},
         {"lighting.octave_contribution", real(&QualitySettings::octaveContribution, 0, 1)},
@@ -52,10 +50,6 @@ std::map<std::string, Key> keys()
         {"lighting.phase_forward_weight", real(&QualitySettings::phaseForwardWeight, 0, 1)},
         {"lighting.cone_step_m", real(&QualitySettings::coneStepM, 1, 2000)},
         {"lighting.full_cone_samples", u32(&QualitySettings::fullConeSamples, 0, 6)},
-        {"lighting.cone_tail_reuse_m", real(&QualitySettings::coneTailReuseM, 0, 5000)},
-        {"lighting.cone_tail_reuse_beyond_m", real(&QualitySettings::coneTailReuseBeyondM, 0, 1e6)},
-        {"lighting.deep_light_reuse_m", real(&QualitySettings::deepLightReuseM, 0, 5000)},
-        {"lighting.cone_near_merge_beyond_m", real(&QualitySettings::coneNearMergeBeyondM, 0, 1e7)},
         {"lighting.light_volume_texel_m", real(&QualitySettings::lightVolumeTexelM, 0, 5000)},
         {"lighting.light_volume_min_rays", u32(&QualitySettings::lightVolumeMinRays, 0, 4294967295.0)},
         {"lighting.ambient_strength", real(&QualitySettings::ambientStrength, 0, 10)},
@@ -72,6 +66,22 @@ std::map<std::string, Key> keys()
         {"window.half_extent_m", real(&QualitySettings::windowHalfExtentM, 10000, 3000000)},
         {"window.warp_radius_m", real(&QualitySettings::windowWarpRadiusM, 0, 3000000)},
     };
+}
+
+// Keys of earlier versions that now belong to the experiments (skyservice/render/render_tuning.h): a
+// file that still sets one is refused like an unknown key, with the reason, so that nobody believes a
+// setting took effect.
+const std::map<std::string, const char*>& removedKeys()
+{
+    static const std::map<std::string, const char*> removed = {
+        {"march.empty_space_skipping", "--no-skipping"},
+        {"march.cost_ordered_rows", "--no-cost-order"},
+        {"lighting.cone_tail_reuse_m", "--cone-tail-reuse"},
+        {"lighting.cone_tail_reuse_beyond_m", "--cone-tail-reuse-beyond"},
+        {"lighting.deep_light_reuse_m", "--deep-light-reuse"},
+        {"lighting.cone_near_merge_beyond_m", "--cone-near-merge-beyond"},
+    };
+    return removed;
 }
 
 }  // namespace
@@ -99,6 +109,12 @@ bool applyConfigFile(const std::string& path, QualitySettings& quality, std::str
                     return;
                 std::string full = std::string(section.str()) + "." + std::string(name.str());
                 auto it = known.find(full);
+                if (auto removed = removedKeys().find(full); removed != removedKeys().end())
+                {
+                    bad = path + ": key '" + full + "' was removed: it is an experiment's knob, not a setting " +
+                          "(sky-bench " + removed->second + " sets it for measurements)";
+                    return;
+                }
                 if (it == known.end())
                 {
                     bad = path + ": unknown key '" + full + "' (config/default.toml lists every key)";

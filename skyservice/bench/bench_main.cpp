@@ -89,21 +89,22 @@ std::string utcClock()
     return std::string(text) + "." + std::to_string(1000 + ms).substr(1);
 }
 
-nlohmann::json qualityJson(const QualitySettings& q)
+// The settings and the experiment knobs, in one object (the report's "quality", as before they were split).
+nlohmann::json qualityJson(const QualitySettings& q, const RenderTuning& t)
 {
     return {{"maxViewSteps", q.maxViewSteps}, {"lightSamples", q.lightSamples}, {"octaves", q.octaves},
             {"detail", q.detail},             {"highCloud", q.highCloud},       {"maxDistanceM", q.maxDistanceM},
             {"gpuFramesPerCall", q.accumulationFrames}, {"baseNoisePeriodM", q.baseNoisePeriodM},
             {"detailNoisePeriodM", q.detailNoisePeriodM}, {"extinctionPerM", q.extinctionPerM},
-            {"coneStepM", q.coneStepM}, {"lightLodDistanceM", q.lightLodDistanceM},
-            {"fullConeSamples", q.fullConeSamples}, {"detailFadeStartM", q.detailFadeStartM},
-            {"detailFadeEndM", q.detailFadeEndM}, {"lightVolumeTexelM", q.lightVolumeTexelM},
+            {"coneStepM", q.coneStepM}, {"lightLodDistanceM", t.lightLodDistanceM},
+            {"fullConeSamples", q.fullConeSamples}, {"detailFadeStartM", t.detailFadeStartM},
+            {"detailFadeEndM", t.detailFadeEndM}, {"lightVolumeTexelM", q.lightVolumeTexelM},
             {"lightVolumeMinRays", q.lightVolumeMinRays}, {"detailMinTransmittance", q.detailMinTransmittance},
             {"deepStepFactor", q.deepStepFactor},
-            {"maxStepOpticalDepth", q.maxStepOpticalDepth}, {"emptySpaceSkipping", q.emptySpaceSkipping},
-            {"lightVolumeFarCascade", q.lightVolumeFarCascade}, {"coneTailReuseM", q.coneTailReuseM},
-            {"coneTailReuseBeyondM", q.coneTailReuseBeyondM}, {"deepLightReuseM", q.deepLightReuseM},
-            {"coneNearMergeBeyondM", q.coneNearMergeBeyondM}};
+            {"maxStepOpticalDepth", q.maxStepOpticalDepth}, {"emptySpaceSkipping", t.emptySpaceSkipping},
+            {"lightVolumeFarCascade", t.lightVolumeFarCascade}, {"coneTailReuseM", t.coneTailReuseM},
+            {"coneTailReuseBeyondM", t.coneTailReuseBeyondM}, {"deepLightReuseM", t.deepLightReuseM},
+            {"coneNearMergeBeyondM", t.coneNearMergeBeyondM}};
 }
 
 // Box-filters an image down by an integer factor (contact sheet tiles only).
@@ -195,7 +196,7 @@ void fillDevice(const Renderer& r, BenchRun& run)
     run.driver = r.ctx.driverInfo;
     run.apiVersion = p.apiVersion;
     run.timestampPeriodNs = r.ctx.timestampPeriodNs;
-    for (const Program* program : {&r.cloudProgram, &r.reconstructProgram, &r.compositeProgram, &r.lightVolumeProgram})
+    for (const Program* program : {&r.march.program, &r.reconstruct.program, &r.composite.program, &r.lightVolume.program})
         if (!program->statistics.empty())
             run.pipelineStatistics[program->name] = program->statistics;
     switch (p.deviceType)
@@ -231,28 +232,29 @@ int runBench(const BenchOptions& o)
         quality.accumulationFrames = 1;
     if (o.steps > 0)
         quality.maxViewSteps = o.steps;
+    RenderTuning tuning;  // the experiment knobs (render_tuning.h)
     if (o.lightLodM >= 0)
-        quality.lightLodDistanceM = o.lightLodM;
+        tuning.lightLodDistanceM = o.lightLodM;
     if (o.lightSamples >= 0)
         quality.lightSamples = uint32_t(o.lightSamples);
     if (o.noDetail)
         quality.detail = false;
     if (o.noCostOrder)
-        quality.costOrderedMarch = false;
+        tuning.costOrderedMarch = false;
     if (o.coneTailReuseM >= 0)
-        quality.coneTailReuseM = o.coneTailReuseM;
+        tuning.coneTailReuseM = o.coneTailReuseM;
     if (o.coneTailReuseBeyondM >= 0)
-        quality.coneTailReuseBeyondM = o.coneTailReuseBeyondM;
+        tuning.coneTailReuseBeyondM = o.coneTailReuseBeyondM;
     if (o.deepLightReuseM >= 0)
-        quality.deepLightReuseM = o.deepLightReuseM;
+        tuning.deepLightReuseM = o.deepLightReuseM;
     if (o.octaves >= 0)
         quality.octaves = uint32_t(o.octaves);
     if (o.coneNearMergeBeyondM >= 0)
-        quality.coneNearMergeBeyondM = o.coneNearMergeBeyondM;
+        tuning.coneNearMergeBeyondM = o.coneNearMergeBeyondM;
     if (o.noSkipping)
-        quality.emptySpaceSkipping = false;
+        tuning.emptySpaceSkipping = false;
     if (o.noFarLightVolume)
-        quality.lightVolumeFarCascade = false;
+        tuning.lightVolumeFarCascade = false;
     if (o.fullConeSamples >= 0)
         quality.fullConeSamples = uint32_t(o.fullConeSamples);
     if (o.lightVolumeTexelM >= 0)
@@ -266,9 +268,9 @@ int runBench(const BenchOptions& o)
     if (o.maxStepOpticalDepth >= 0)
         quality.maxStepOpticalDepth = o.maxStepOpticalDepth;
     if (o.detailFadeStartM >= 0)
-        quality.detailFadeStartM = o.detailFadeStartM;
+        tuning.detailFadeStartM = o.detailFadeStartM;
     if (o.detailFadeEndM >= 0)
-        quality.detailFadeEndM = o.detailFadeEndM;
+        tuning.detailFadeEndM = o.detailFadeEndM;
 
     Renderer r;
     RendererOptions ro;
@@ -276,6 +278,7 @@ int runBench(const BenchOptions& o)
     ro.context.validation = o.validate;
     ro.context.pipelineStatistics = true;
     SkyStatus status = createRenderer(r, ro);
+    r.tuning = tuning;
     BenchRun run;
     std::vector<ImageRgba8> tiles;
     std::vector<std::string> captions;
@@ -317,7 +320,7 @@ int runBench(const BenchOptions& o)
     run.gpuFramesPerCall = o.gpuFrames;
     run.mode = o.mode;
     run.speedMps = o.speedMps;
-    run.quality = qualityJson(quality);
+    run.quality = qualityJson(quality, tuning);
     printBenchTable(stdout, run);
 
     int code = kExitOk;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/atmosphere_passes.h"
 
+#include "skyservice/render/renderer.h"
+
 #include "shaders/shared/atmosphere_params.h"
 #include "skyservice/sky/atmosphere.h"
 #include "skyservice/sky/atmosphere_reference.h"
@@ -53,43 +55,62 @@ AtmosphereParams frameAtmosphere(double radiusM, const SunMoon& sunMoon, const V
 
 }  // namespace
 
-SkyStatus createAtmosphereResources(Renderer& r)
+SkyStatus createAtmospherePass(const Context& ctx, MemoryTracker& memory, AtmospherePass& a)
 {
+    SKY_TRY(createProgram(ctx, a.transmittanceProgram, "transmittance_lut"));
+    SKY_TRY(createProgram(ctx, a.multiscatterProgram, "multiscatter_lut"));
+    SKY_TRY(createProgram(ctx, a.skyViewProgram, "sky_view_lut"));
+    SKY_TRY(createProgram(ctx, a.aerialPerspectiveProgram, "aerial_perspective_lut"));
     ImageDesc d;
     d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
     d.width = TRANSMITTANCE_LUT_WIDTH;
     d.height = TRANSMITTANCE_LUT_HEIGHT;
-    SKY_TRY(createImage(r.ctx, r.memory, r.transmittanceLut, d, "transmittance LUT"));
+    SKY_TRY(createImage(ctx, memory, a.transmittanceLut, d, "transmittance LUT"));
     d.width = d.height = MULTISCATTER_LUT_SIZE;
-    SKY_TRY(createImage(r.ctx, r.memory, r.multiscatterLut, d, "multiple-scattering LUT"));
+    SKY_TRY(createImage(ctx, memory, a.multiscatterLut, d, "multiple-scattering LUT"));
     d.width = SKY_VIEW_LUT_WIDTH;
     d.height = SKY_VIEW_LUT_HEIGHT;
-    SKY_TRY(createImage(r.ctx, r.memory, r.skyViewLut, d, "sky-view LUT"));
+    SKY_TRY(createImage(ctx, memory, a.skyViewLut, d, "sky-view LUT"));
     d.viewType = VK_IMAGE_VIEW_TYPE_3D;
     d.width = AERIAL_LUT_WIDTH;
     d.height = AERIAL_LUT_HEIGHT;
     d.depth = AERIAL_LUT_SLICES;
-    SKY_TRY(createImage(r.ctx, r.memory, r.aerialInscatterLut, d, "aerial-perspective LUT (in-scattering)"));
-    SKY_TRY(createImage(r.ctx, r.memory, r.aerialTransmittanceLut, d, "aerial-perspective LUT (transmittance)"));
+    SKY_TRY(createImage(ctx, memory, a.aerialInscatterLut, d, "aerial-perspective LUT (in-scattering)"));
+    SKY_TRY(createImage(ctx, memory, a.aerialTransmittanceLut, d, "aerial-perspective LUT (transmittance)"));
     OneShot shot;
-    SKY_TRY(beginOneShot(r.ctx, shot));
-    for (Image* img : {&r.transmittanceLut, &r.multiscatterLut, &r.skyViewLut, &r.aerialInscatterLut,
-                       &r.aerialTransmittanceLut})
+    SKY_TRY(beginOneShot(ctx, shot));
+    for (Image* img : {&a.transmittanceLut, &a.multiscatterLut, &a.skyViewLut, &a.aerialInscatterLut,
+                       &a.aerialTransmittanceLut})
         transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-    return endOneShot(r.ctx, shot);
+    return endOneShot(ctx, shot);
 }
 
-LightingEstimate estimateLighting(Renderer& r, const CameraFrame& camera, const SunMoon& sunMoon,
+void destroyAtmospherePass(const Context& ctx, MemoryTracker& memory, AtmospherePass& a)
+{
+    for (Image* img : {&a.transmittanceLut, &a.multiscatterLut, &a.skyViewLut, &a.aerialInscatterLut,
+                       &a.aerialTransmittanceLut})
+        destroyImage(ctx, memory, *img);
+    for (Program* p : {&a.transmittanceProgram, &a.multiscatterProgram, &a.skyViewProgram, &a.aerialPerspectiveProgram})
+        destroyProgram(ctx, *p);
+}
+
+void forgetAtmosphereLuts(AtmospherePass& a)
+{
+    a.radiusM = 0;
+    a.skyViewInputsValid = false;
+}
+
+LightingEstimate estimateLighting(AtmospherePass& a, const CameraFrame& camera, const SunMoon& sunMoon,
                                   const WindowSummary& summary)
 {
     LightingEstimate e;
     const double R = atmosphereGroundRadiusM(camera);
-    if (r.cpuAtmosphereRadiusM != R)
+    if (a.cpuRadiusM != R)
     {
-        r.cpuAtmosphere = createAtmosphereReference(makeEarthAtmosphere(R));
-        r.cpuAtmosphereRadiusM = R;
+        a.cpu = createAtmosphereReference(makeEarthAtmosphere(R));
+        a.cpuRadiusM = R;
     }
-    const AtmosphereParams& p = r.cpuAtmosphere.params;
+    const AtmosphereParams& p = a.cpu.params;
     e.sunIrradiance = toD(glm::vec3(p.solarIrradiance.x, p.solarIrradiance.y, p.solarIrradiance.z));
     e.groundAlbedo = double(p.groundAlbedo.x);
 
@@ -114,7 +135,7 @@ LightingEstimate estimateLighting(Renderer& r, const CameraFrame& camera, const 
     for (int row : {SKY_VIEW_LUT_HEIGHT / 10, SKY_VIEW_LUT_HEIGHT / 5, SKY_VIEW_LUT_HEIGHT / 3})
         for (int col = 0; col < SKY_VIEW_LUT_WIDTH; col += SKY_VIEW_LUT_WIDTH / 8)
         {
-            sum += toD(skyViewTexel(r.cpuAtmosphere, c, col, row));
+            sum += toD(skyViewTexel(a.cpu, c, col, row));
             ++count;
         }
     e.ambientSkyRadiance = sum / double(count);
@@ -123,7 +144,7 @@ LightingEstimate estimateLighting(Renderer& r, const CameraFrame& camera, const 
     auto direct = [&](const glm::dvec3& dir, const glm::dvec3& irradiance) {
         if (dir.z <= 0.0)
             return glm::dvec3(0.0);
-        return irradiance * toD(sampleTransmittanceCpu(r.cpuAtmosphere, float(R), float(dir.z))) * dir.z;
+        return irradiance * toD(sampleTransmittanceCpu(a.cpu, float(R), float(dir.z))) * dir.z;
     };
     e.groundIrradiance = direct(sunMoon.sun.directionEnu, e.sunIrradiance) +
                          direct(sunMoon.moon.directionEnu, moonIrr) + M_PI * e.ambientSkyRadiance;
@@ -134,7 +155,7 @@ LightingEstimate estimateLighting(Renderer& r, const CameraFrame& camera, const 
     // is allowed to go dark, as the eye sees it.
     auto normalIncidence = [&](const glm::dvec3& dir, const glm::dvec3& irradiance) {
         float mu = float(std::max(dir.z, -0.2));
-        return irradiance * toD(sampleTransmittanceCpu(r.cpuAtmosphere, float(R) + cloudAltitudeM, mu));
+        return irradiance * toD(sampleTransmittanceCpu(a.cpu, float(R) + cloudAltitudeM, mu));
     };
     glm::dvec3 keyLight = normalIncidence(sunMoon.sun.directionEnu, e.sunIrradiance) +
                           normalIncidence(sunMoon.moon.directionEnu, moonIrr);
@@ -151,25 +172,26 @@ LightingEstimate estimateLighting(Renderer& r, const CameraFrame& camera, const 
 void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camera, const SunMoon& sunMoon,
                       const FrameInputs& in)
 {
+    AtmospherePass& a = r.atmosphere;
     const double R = atmosphereGroundRadiusM(camera);
     AtmosphereParams p = frameAtmosphere(R, sunMoon, *in.request);
     std::memcpy(recording(r).atmosphereUniforms.mapped, &p, sizeof p);
     // The transmittance and multiple-scattering LUTs depend on the radius, the haze and the fog. The last
     // haze and fog they were made with are the sky-view LUT's (made in the same call as they are, after them).
     const bool hazeChanged =
-        std::memcmp(&p.mieScattering, &r.skyViewAtmosphere.mieScattering, 2 * sizeof(vec4)) != 0 ||
-        std::memcmp(&p.groundFog, &r.skyViewAtmosphere.groundFog, sizeof(vec4)) != 0;
-    const bool rebuild = r.atmosphereRadiusM != R || hazeChanged;
+        std::memcmp(&p.mieScattering, &a.skyViewAtmosphere.mieScattering, 2 * sizeof(vec4)) != 0 ||
+        std::memcmp(&p.groundFog, &a.skyViewAtmosphere.groundFog, sizeof(vec4)) != 0;
+    const bool rebuild = a.radiusM != R || hazeChanged;
     if (rebuild)
     {
-        dispatch(r.ctx, cmd, r.transmittanceProgram, TRANSMITTANCE_LUT_WIDTH, TRANSMITTANCE_LUT_HEIGHT, 1, nullptr, 0,
-                 {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(r.transmittanceLut)});
+        dispatch(r.ctx, cmd, a.transmittanceProgram, TRANSMITTANCE_LUT_WIDTH, TRANSMITTANCE_LUT_HEIGHT, 1, nullptr, 0,
+                 {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(a.transmittanceLut)});
         computeBarrier(cmd);
-        dispatch(r.ctx, cmd, r.multiscatterProgram, MULTISCATTER_LUT_SIZE, MULTISCATTER_LUT_SIZE, 1, nullptr, 0,
-                 {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(r.multiscatterLut),
-                  DescriptorInfo(r.transmittanceLut, r.linearClamp)});
+        dispatch(r.ctx, cmd, a.multiscatterProgram, MULTISCATTER_LUT_SIZE, MULTISCATTER_LUT_SIZE, 1, nullptr, 0,
+                 {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(a.multiscatterLut),
+                  DescriptorInfo(a.transmittanceLut, r.linearClamp)});
         computeBarrier(cmd);
-        r.atmosphereRadiusM = R;
+        a.radiusM = R;
     }
     SkyViewPushConstants c;
     std::memset(&c, 0, sizeof c);
@@ -182,30 +204,19 @@ void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camer
     // The sky-view and aerial-perspective LUTs are pure functions of these inputs and of the two LUTs above: a frame whose
     // inputs are bit for bit the last one's (a still eye, or one flying level, with the time frozen; the
     // frames of an accumulation) keeps it. Exact comparison, so the picture never depends on the past.
-    if (!rebuild && r.skyViewInputsValid && std::memcmp(&c, &r.skyViewPush, sizeof c) == 0 &&
-        std::memcmp(&p, &r.skyViewAtmosphere, sizeof p) == 0)
+    if (!rebuild && a.skyViewInputsValid && std::memcmp(&c, &a.skyViewPush, sizeof c) == 0 &&
+        std::memcmp(&p, &a.skyViewAtmosphere, sizeof p) == 0)
         return;
-    r.skyViewPush = c;
-    r.skyViewAtmosphere = p;
-    r.skyViewInputsValid = true;
-    dispatch(r.ctx, cmd, r.skyViewProgram, SKY_VIEW_LUT_WIDTH, SKY_VIEW_LUT_HEIGHT, 1, c,
-             {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(r.skyViewLut),
-              DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.multiscatterLut, r.linearClamp)});
-    dispatch(r.ctx, cmd, r.aerialPerspectiveProgram, AERIAL_LUT_WIDTH, AERIAL_LUT_HEIGHT, 1, c,
-             {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(r.aerialInscatterLut),
-              DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.multiscatterLut, r.linearClamp),
-              DescriptorInfo(r.aerialTransmittanceLut)});
-}
-
-void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request, const CompositeImages& images)
-{
-    dispatch(r.ctx, cmd, r.compositeProgram, request.width, request.height, 1, nullptr, 0,
-             {DescriptorInfo(recording(r).frameUniforms), DescriptorInfo(recording(r).atmosphereUniforms),
-              DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.skyViewLut, r.linearRepeat),
-              DescriptorInfo(r.aerialInscatterLut, r.linearRepeat), DescriptorInfo(r.aerialTransmittanceLut, r.linearRepeat),
-              DescriptorInfo(*images.cloud), DescriptorInfo(*images.depth), DescriptorInfo(*images.history),
-              DescriptorInfo(*images.linear), DescriptorInfo(r.displayImage), DescriptorInfo(*images.sky),
-              DescriptorInfo(*images.cloudLayer), DescriptorInfo(*images.cloudOut), DescriptorInfo(*images.depthOut)});
+    a.skyViewPush = c;
+    a.skyViewAtmosphere = p;
+    a.skyViewInputsValid = true;
+    dispatch(r.ctx, cmd, a.skyViewProgram, SKY_VIEW_LUT_WIDTH, SKY_VIEW_LUT_HEIGHT, 1, c,
+             {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(a.skyViewLut),
+              DescriptorInfo(a.transmittanceLut, r.linearClamp), DescriptorInfo(a.multiscatterLut, r.linearClamp)});
+    dispatch(r.ctx, cmd, a.aerialPerspectiveProgram, AERIAL_LUT_WIDTH, AERIAL_LUT_HEIGHT, 1, c,
+             {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(a.aerialInscatterLut),
+              DescriptorInfo(a.transmittanceLut, r.linearClamp), DescriptorInfo(a.multiscatterLut, r.linearClamp),
+              DescriptorInfo(a.aerialTransmittanceLut)});
 }
 
 }  // namespace sky

@@ -1,13 +1,35 @@
 // SPDX-License-Identifier: MIT
-// Host side of the atmosphere: the LUT images and passes, the composite pass, and the CPU estimate of
-// the light that reaches the clouds (ambient sky, ground irradiance, exposure).
+// Host side of the atmosphere: the LUT images and passes (AtmospherePass), and the CPU estimate of the
+// light that reaches the clouds (ambient sky, ground irradiance, exposure).
 #pragma once
 
+#include "shaders/shared/atmosphere_params.h"
 #include "skyservice/render/frame_setup.h"
-#include "skyservice/render/renderer.h"
+#include "skyservice/sky/atmosphere_reference.h"
+#include "skyservice/vk/programs.h"
 
 namespace sky
 {
+
+struct Renderer;
+
+/// The atmosphere's LUTs, the programs that build them, and what they were last built for: the
+/// transmittance and multiple-scattering LUTs depend on the ground radius alone, the sky-view and
+/// aerial-perspective LUTs on the frame's sun, moon and eye altitude (kept while those are bit for bit
+/// the last frame's).
+struct AtmospherePass
+{
+    Program transmittanceProgram, multiscatterProgram, skyViewProgram, aerialPerspectiveProgram;
+    Image transmittanceLut, multiscatterLut, skyViewLut;
+    Image aerialInscatterLut, aerialTransmittanceLut;  ///< 3D, AERIAL_LUT_* (atmosphere_params.h)
+    double radiusM = 0;  ///< bottom radius the transmittance/multiscatter LUTs were built for (0: none)
+    /// The inputs the sky-view and aerial LUTs were last built from (recordAtmosphere reuses them when equal).
+    SkyViewPushConstants skyViewPush{};
+    AtmosphereParams skyViewAtmosphere{};
+    bool skyViewInputsValid = false;
+    AtmosphereReference cpu;  ///< CPU copy of the atmosphere LUTs, for the lighting estimate
+    double cpuRadiusM = -1;   ///< ground radius `cpu` was built for
+};
 
 struct LightingEstimate
 {
@@ -18,33 +40,20 @@ struct LightingEstimate
     double exposure = 1.0;                ///< multiplier before tone mapping
 };
 
-/// Creates the LUT images.
-SkyStatus createAtmosphereResources(Renderer& r);
+/// Loads the LUT programs and creates the LUT images (layout GENERAL).
+SkyStatus createAtmospherePass(const Context& ctx, MemoryTracker& memory, AtmospherePass& pass);
+void destroyAtmospherePass(const Context& ctx, MemoryTracker& memory, AtmospherePass& pass);
+/// Forgets what the LUTs hold: the next frame builds them all (after a failed frame, whose LUT passes
+/// may never have run).
+void forgetAtmosphereLuts(AtmospherePass& pass);
 
 /// CPU estimate of the lighting for this frame (double precision, a few hundred atmosphere samples).
-LightingEstimate estimateLighting(Renderer& r, const CameraFrame& camera, const SunMoon& sunMoon,
+LightingEstimate estimateLighting(AtmospherePass& pass, const CameraFrame& camera, const SunMoon& sunMoon,
                                   const WindowSummary& summary);
 
 /// Records the transmittance and multiple-scattering LUTs (when the earth radius changed) and the
 /// sky-view LUT for this frame.
 void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camera, const SunMoon& sunMoon,
                       const FrameInputs& in);
-
-/// The images the composite reads and writes. Each optional output is the frame's image while a reader
-/// asks for it (its FRAME_FLAG_* set), else a 1x1 stand-in the shader does not write.
-struct CompositeImages
-{
-    const Image* cloud = nullptr;    ///< the march's cloud image (block resolution in reprojected frames)
-    const Image* depth = nullptr;    ///< ... and its depth
-    const Image* history = nullptr;  ///< the packed history of the pixels not marched (stand-in: full frames)
-    const Image* linear = nullptr;   ///< linear frame (FRAME_FLAG_NO_LINEAR_OUTPUT clear)
-    const Image* sky = nullptr;      ///< FRAME_FLAG_SKY_LAYER
-    const Image* cloudLayer = nullptr;  ///< FRAME_FLAG_CLOUD_LAYER
-    const Image* cloudOut = nullptr;    ///< FRAME_FLAG_WRITE_CLOUD: the full-resolution cloud image...
-    const Image* depthOut = nullptr;    ///< ... and depth of a reprojected frame
-};
-
-/// Records the composite pass (sky + clouds + aerial perspective -> display image and the outputs asked for).
-void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request, const CompositeImages& images);
 
 }  // namespace sky

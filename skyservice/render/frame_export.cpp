@@ -333,8 +333,8 @@ SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frame
     if (slot >= e.slots)
         return SkyStatus::failure("frame export: slot " + std::to_string(slot) + " of " + std::to_string(e.slots),
                                   VK_ERROR_UNKNOWN);
-    if (frame.width == 0 || frame.height == 0 || !r.displayImage.image || frame.width != r.displayImage.extent.width ||
-        frame.height != r.displayImage.extent.height)
+    if (frame.width == 0 || frame.height == 0 || !r.composite.displayImage.image || frame.width != r.composite.displayImage.extent.width ||
+        frame.height != r.composite.displayImage.extent.height)
         return SkyStatus::failure("frame export: no rendered frame of this size on the GPU", VK_ERROR_UNKNOWN);
     if (frame.width > e.maxWidth || frame.height > e.maxHeight)
         return SkyStatus::failure("frame export: the frame (" + std::to_string(frame.width) + "x" +
@@ -371,7 +371,7 @@ SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frame
         VkImage source;
         ExportedImage* target;
     };
-    std::vector<Pair> pairs = {{r.displayImage.image, &e.frames[slot]}};
+    std::vector<Pair> pairs = {{r.composite.displayImage.image, &e.frames[slot]}};
     if (withShadow)
         pairs.push_back({r.shadowPass.image.image, &e.shadows[slot]});
 
@@ -409,7 +409,7 @@ SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frame
     copy.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     copy.dstSubresource = copy.srcSubresource;
     copy.extent = {frame.width, frame.height, 1};
-    vkCmdCopyImage(cmd, r.displayImage.image, srcOpt, e.frames[slot].image, dstOpt, 1, &copy);
+    vkCmdCopyImage(cmd, r.composite.displayImage.image, srcOpt, e.frames[slot].image, dstOpt, 1, &copy);
     if (withShadow)
     {
         // Same size, NEAREST: an exact half -> float conversion of the red channel (transmittance).

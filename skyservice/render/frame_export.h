@@ -104,7 +104,7 @@ void destroyFrameExport(Renderer& r, FrameExport& e);
 /**
  * Copy the last rendered frame into a slot.
  *
- * @param[in,out] r the renderer, right after renderView produced `frame` (r.displayImage and, when
+ * @param[in,out] r the renderer, right after renderView produced `frame` (r.composite.displayImage and, when
  *   frame.shadowMapSize > 0, r.shadowPass.image still hold it).
  * @param[in,out] e the ring.
  * @param[in] slot which slot, < e.slots.

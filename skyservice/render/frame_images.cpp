@@ -37,18 +37,18 @@ SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height, const
                              bool reprojected)
 {
     const bool cloudImages = !reprojected || outputs.cloud || outputs.depth;
-    const bool frameOk = hasSize(r.displayImage, width, height);
-    const bool cloudOk = !cloudImages || hasSize(r.cloudImage, width, height);
+    const bool frameOk = hasSize(r.composite.displayImage, width, height);
+    const bool cloudOk = !cloudImages || hasSize(r.march.cloudImage, width, height);
     if (!frameOk || !cloudOk)
     {
         // Resize or the first frame: never in steady state. Everything of the old size goes.
         VK_TRY(vkQueueWaitIdle(r.ctx.queue));
-        for (Image* img : {&r.displayImage, &r.linearImage, &r.skyImage, &r.cloudLayerImage})
+        for (Image* img : {&r.composite.displayImage, &r.composite.linearImage, &r.composite.skyImage, &r.composite.cloudLayerImage})
             destroyImage(r.ctx, r.memory, *img);
         if (!frameOk || cloudImages)  // a resize drops cloud images of the old size
         {
-            destroyImage(r.ctx, r.memory, r.cloudImage);
-            destroyImage(r.ctx, r.memory, r.depthImage);
+            destroyImage(r.ctx, r.memory, r.march.cloudImage);
+            destroyImage(r.ctx, r.memory, r.march.depthImage);
         }
     }
     std::vector<Image*> made;
@@ -68,14 +68,14 @@ SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height, const
             deferDestroy(r, img);
         return SkyStatus::success();
     };
-    SKY_TRY(optional(r.displayImage, true, VK_FORMAT_R8G8B8A8_UNORM, "display frame"));
-    SKY_TRY(optional(r.linearImage, outputs.linearImage, VK_FORMAT_R16G16B16A16_SFLOAT, "linear frame"));
-    SKY_TRY(optional(r.skyImage, outputs.sky, VK_FORMAT_R16G16B16A16_SFLOAT, "sky layer"));
-    SKY_TRY(optional(r.cloudLayerImage, outputs.cloudLayer, VK_FORMAT_R16G16B16A16_SFLOAT, "cloud layer"));
-    if (cloudImages && !r.cloudImage.image)  // a renderer that made full frames keeps their cloud images
+    SKY_TRY(optional(r.composite.displayImage, true, VK_FORMAT_R8G8B8A8_UNORM, "display frame"));
+    SKY_TRY(optional(r.composite.linearImage, outputs.linearImage, VK_FORMAT_R16G16B16A16_SFLOAT, "linear frame"));
+    SKY_TRY(optional(r.composite.skyImage, outputs.sky, VK_FORMAT_R16G16B16A16_SFLOAT, "sky layer"));
+    SKY_TRY(optional(r.composite.cloudLayerImage, outputs.cloudLayer, VK_FORMAT_R16G16B16A16_SFLOAT, "cloud layer"));
+    if (cloudImages && !r.march.cloudImage.image)  // a renderer that made full frames keeps their cloud images
     {
-        SKY_TRY(optional(r.cloudImage, true, VK_FORMAT_R16G16B16A16_SFLOAT, "cloud radiance"));
-        SKY_TRY(optional(r.depthImage, true, VK_FORMAT_R32_SFLOAT, "cloud depth"));
+        SKY_TRY(optional(r.march.cloudImage, true, VK_FORMAT_R16G16B16A16_SFLOAT, "cloud radiance"));
+        SKY_TRY(optional(r.march.depthImage, true, VK_FORMAT_R32_SFLOAT, "cloud depth"));
     }
     return toGeneral(r, made);
 }
@@ -100,29 +100,29 @@ SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height,
     std::vector<Image*> made;
     ImageDesc d;
     d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-    if (!hasSize(r.history[0], width, height))
+    if (!hasSize(r.reconstruct.history[0], width, height))
     {
         VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize only: never in steady state
-        r.reprojection.valid = false;
+        r.reconstruct.reprojection.valid = false;
         d.width = width;
         d.height = height;
         d.format = VK_FORMAT_R16G16B16A16_UINT;  // shaders/lib/cloud_history.glsl
-        for (Image& h : r.history)
+        for (Image& h : r.reconstruct.history)
             SKY_TRY(remake(r, h, d, "cloud history (radiance, alpha, depth packed)", made));
     }
     // The fresh images have the size of the block in use: they grow when the eye nears or enters a cloud
     // layer (every pixel is marched inside one: 25 MB at 1080p) and shrink back when it leaves. They only
     // hold this frame's marched pixels, so replacing them never touches the history.
     const uint32_t blocksX = (width + blockPx - 1) / blockPx, blocksY = (height + blockPx - 1) / blockPx;
-    if (!hasSize(r.freshCloudImage, blocksX, blocksY))
+    if (!hasSize(r.reconstruct.freshCloudImage, blocksX, blocksY))
     {
         VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // a change of march block only
         d.width = blocksX;
         d.height = blocksY;
         d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-        SKY_TRY(remake(r, r.freshCloudImage, d, "fresh cloud radiance (one pixel per block)", made));
+        SKY_TRY(remake(r, r.reconstruct.freshCloudImage, d, "fresh cloud radiance (one pixel per block)", made));
         d.format = VK_FORMAT_R32_SFLOAT;
-        SKY_TRY(remake(r, r.freshDepthImage, d, "fresh cloud depth (one pixel per block)", made));
+        SKY_TRY(remake(r, r.reconstruct.freshDepthImage, d, "fresh cloud depth (one pixel per block)", made));
     }
     return toGeneral(r, made);
 }

@@ -3,7 +3,6 @@
 
 #include "skyservice/render/atmosphere_passes.h"
 #include "skyservice/render/light_volume.h"
-#include "skyservice/render/march_order.h"
 
 #include <cstring>
 
@@ -44,8 +43,8 @@ VkDeviceSize frameReadbackBytes(const Renderer& r, const ViewRequest& request, c
     const FrameOutputs o = FrameOutputs::of(request, quality);
     VkDeviceSize bytes = 0;
     const std::pair<bool, const Image*> images[] = {
-        {o.display, &r.displayImage}, {o.cloud, &r.cloudImage},      {o.depth, &r.depthImage},
-        {o.linear, &r.linearImage},   {o.sky, &r.skyImage},          {o.cloudLayer, &r.cloudLayerImage},
+        {o.display, &r.composite.displayImage}, {o.cloud, &r.march.cloudImage},      {o.depth, &r.march.depthImage},
+        {o.linear, &r.composite.linearImage},   {o.sky, &r.composite.skyImage},          {o.cloudLayer, &r.composite.cloudLayerImage},
         {request.shadowMap && quality.readback, &r.shadowPass.transmittance},
         {request.shadowMap && o.shadowDetail, &r.shadowPass.image},
     };
@@ -64,84 +63,67 @@ void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, c
     VkCommandBuffer cmd = frame.cmd;
     vkCmdResetQueryPool(cmd, frame.timestamps, 0, kTsCount);
     // Reprojected: one invocation per block (4x4, or finer near clouds) into the fresh images.
-    const uint32_t block = reprojected ? r.reprojection.block.blockPx : 1u;
+    const uint32_t block = reprojected ? r.reconstruct.reprojection.block.blockPx : 1u;
     const uint32_t marchX = (request.width + block - 1) / block;
     const uint32_t marchY = (request.height + block - 1) / block;
     // The order of the march's workgroup rows (march_order.h), uploaded first: its barrier then waits
     // for nothing.
     const uint32_t marchGroupRows = (marchY + WORKGROUP_SIZE_2D - 1) / WORKGROUP_SIZE_2D;
-    facts.marchRowOrder = prepareMarchOrder(r.marchOrder, cmd, marchGroupRows, r.marchDispatchRanges,
-                                            in.quality->costOrderedMarch);
+    facts.marchRowOrder = prepareMarchOrder(r.march.order, cmd, marchGroupRows, r.march.dispatchRanges,
+                                            r.tuning.costOrderedMarch);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, frame.timestamps, kTsStart);
     recordAtmosphere(r, cmd, camera, sunMoon, in);
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsSkyView);
     recordLightVolume(r, cmd, params);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsLightVolume);
-    const Image& marchCloud = reprojected ? r.freshCloudImage : r.cloudImage;
-    const Image& marchDepth = reprojected ? r.freshDepthImage : r.depthImage;
-    dispatch(r.ctx, cmd, r.cloudProgram, marchX, marchY, 1, nullptr, 0,
-             {DescriptorInfo(frame.frameUniforms), DescriptorInfo(frame.atmosphereUniforms),
-              DescriptorInfo(r.weatherWindowImage, r.linearClamp), DescriptorInfo(r.baseNoise, r.linearRepeat),
-              DescriptorInfo(r.detailNoise, r.linearRepeat), DescriptorInfo(r.curlNoise, r.linearRepeat),
-              DescriptorInfo(r.blueNoise, r.nearestRepeat), DescriptorInfo(r.transmittanceLut, r.linearClamp),
-              DescriptorInfo(marchCloud), DescriptorInfo(marchDepth), DescriptorInfo(r.lightVolume, r.linearClamp),
-              DescriptorInfo(r.columnBoundsImage, r.nearestRepeat), DescriptorInfo(r.lightVolumeFar, r.linearClamp),
-              DescriptorInfo(r.marchOrder.buffer)});
-    computeBarrier(cmd);
+    const Image& marchCloud = reprojected ? r.reconstruct.freshCloudImage : r.march.cloudImage;
+    const Image& marchDepth = reprojected ? r.reconstruct.freshDepthImage : r.march.depthImage;
+    recordMarch(r, frame, cmd, marchX, marchY, marchCloud, marchDepth);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsClouds);
     // Reprojected: the packed history the reconstruct pass writes this frame (which the next frame
     // reprojects) holds the pixels not marched this frame; the composite takes the marched ones from the
     // fresh images, and writes the full-resolution cloud image only when a reader asks for it.
-    const uint32_t next = r.reprojection.current ^ 1u;
+    const uint32_t next = r.reconstruct.reprojection.current ^ 1u;
     if (reprojected)
-    {
-        const uint32_t prev = r.reprojection.current;
-        // One invocation per quad of RECONSTRUCT_QUAD_PX^2 pixels (shaders/shared/bindings.h).
-        const uint32_t quadsX = (request.width + RECONSTRUCT_QUAD_PX - 1) / RECONSTRUCT_QUAD_PX;
-        const uint32_t quadsY = (request.height + RECONSTRUCT_QUAD_PX - 1) / RECONSTRUCT_QUAD_PX;
-        dispatch(r.ctx, cmd, r.reconstructProgram, quadsX, quadsY, 1, nullptr, 0,
-                 {DescriptorInfo(frame.frameUniforms), DescriptorInfo(r.freshCloudImage),
-                  DescriptorInfo(r.freshDepthImage), DescriptorInfo(r.history[prev]), DescriptorInfo(r.history[next])});
-        computeBarrier(cmd);
-    }
+        recordReconstruct(r, frame, cmd, request.width, request.height);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsReconstruct);
     const bool writeCloud = reprojected && (outputs.cloud || outputs.depth);
     CompositeImages images;
     images.cloud = &marchCloud;
     images.depth = &marchDepth;
-    images.history = reprojected ? &r.history[next] : &r.historyStandIn;
-    images.linear = outputs.linearImage ? &r.linearImage : &r.linearStandIn;
-    images.sky = outputs.sky ? &r.skyImage : &r.linearStandIn;
-    images.cloudLayer = outputs.cloudLayer ? &r.cloudLayerImage : &r.linearStandIn;
-    images.cloudOut = writeCloud ? &r.cloudImage : &r.linearStandIn;
-    images.depthOut = writeCloud ? &r.depthImage : &r.depthStandIn;
+    images.history = reprojected ? &r.reconstruct.history[next] : &r.composite.historyStandIn;
+    images.linear = outputs.linearImage ? &r.composite.linearImage : &r.composite.linearStandIn;
+    images.sky = outputs.sky ? &r.composite.skyImage : &r.composite.linearStandIn;
+    images.cloudLayer = outputs.cloudLayer ? &r.composite.cloudLayerImage : &r.composite.linearStandIn;
+    images.cloudOut = writeCloud ? &r.march.cloudImage : &r.composite.linearStandIn;
+    images.depthOut = writeCloud ? &r.march.depthImage : &r.composite.depthStandIn;
     recordComposite(r, cmd, request, images);
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsComposite);
-    recordMarchLookupsReadback(r.marchOrder, cmd);
+    recordMarchLookupsReadback(r.march.order, cmd);
 
     plan = FrameReadbackPlan{};
     if (outputs.display)
-        plan.display = addImageReadback(frame, r.displayImage);
+        plan.display = addImageReadback(frame, r.composite.displayImage);
     if (outputs.cloud)
-        plan.cloud = addImageReadback(frame, r.cloudImage);
+        plan.cloud = addImageReadback(frame, r.march.cloudImage);
     if (outputs.depth)
-        plan.depth = addImageReadback(frame, r.depthImage);
+        plan.depth = addImageReadback(frame, r.march.depthImage);
     if (outputs.linear)
-        plan.linear = addImageReadback(frame, r.linearImage);
+        plan.linear = addImageReadback(frame, r.composite.linearImage);
     if (outputs.sky)
-        plan.sky = addImageReadback(frame, r.skyImage);
+        plan.sky = addImageReadback(frame, r.composite.skyImage);
     if (outputs.cloudLayer)
-        plan.cloudLayer = addImageReadback(frame, r.cloudLayerImage);
+        plan.cloudLayer = addImageReadback(frame, r.composite.cloudLayerImage);
 }
 
 void collectFrame(Renderer& r, const FrameContext& frame, const ViewRequest& request, bool reprojected,
                   bool lightVolume, const FrameReadbackPlan& plan, RenderResult& result)
 {
-    const uint32_t block = reprojected ? r.reprojection.block.blockPx : 1u;
+    const uint32_t block = reprojected ? r.reconstruct.reprojection.block.blockPx : 1u;
     const uint32_t marchY = (request.height + block - 1) / block;
-    result.marchRowLookups = collectMarchLookups(r.marchOrder, (marchY + WORKGROUP_SIZE_2D - 1) / WORKGROUP_SIZE_2D);
+    result.marchRowLookups = collectMarchLookups(r.march.order, (marchY + WORKGROUP_SIZE_2D - 1) / WORKGROUP_SIZE_2D);
     uint64_t ts[kTsShadowBegin] = {};
     if (r.ctx.timestampPeriodNs > 0 &&
         vkGetQueryPoolResults(r.ctx.device, frame.timestamps, 0, kTsShadowBegin, sizeof ts, ts, sizeof(uint64_t),

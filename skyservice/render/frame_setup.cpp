@@ -52,6 +52,8 @@ FrameParams makeFrameParams(const FrameInputs& in)
 {
     const CameraFrame& cam = *in.camera;
     const QualitySettings& q = *in.quality;
+    const RenderTuning defaults;
+    const RenderTuning& t = in.tuning ? *in.tuning : defaults;
     const ViewRequest& req = *in.request;
     const WindowSummary& sum = *in.summary;
 
@@ -139,14 +141,14 @@ FrameParams makeFrameParams(const FrameInputs& in)
         flags |= FRAME_FLAG_NO_LINEAR_OUTPUT;
     if (q.reprojected)
         flags |= FRAME_FLAG_REPROJECTED;
-    if (!q.emptySpaceSkipping)
+    if (!t.emptySpaceSkipping)
         flags |= FRAME_FLAG_NO_SKIPPING;
     f.image = uvec4(req.width, req.height, 0u, flags);
-    f.march = uvec4(q.maxViewSteps, q.lightSamples, uint32_t(std::clamp(q.coneNearMergeBeyondM, 0.0, 1e9)), 0u);
-    f.marchLod = vec4(float(q.detailFadeStartM), float(std::max(q.detailFadeEndM, q.detailFadeStartM + 1.0)),
-                      float(std::max(q.lightLodDistanceM, 0.0)), float(q.fullConeSamples));
+    f.march = uvec4(q.maxViewSteps, q.lightSamples, uint32_t(std::clamp(t.coneNearMergeBeyondM, 0.0, 1e9)), 0u);
+    f.marchLod = vec4(float(t.detailFadeStartM), float(std::max(t.detailFadeEndM, t.detailFadeStartM + 1.0)),
+                      float(std::max(t.lightLodDistanceM, 0.0)), float(q.fullConeSamples));
     f.detailLod = vec4(float(q.detailMinTransmittance), float(std::max(q.deepStepFactor, 1.0)),
-                       float(std::max(q.maxStepOpticalDepth, 0.0)), float(std::max(q.deepLightReuseM, 0.0)));
+                       float(std::max(q.maxStepOpticalDepth, 0.0)), float(std::max(t.deepLightReuseM, 0.0)));
     // One jitter texel: a pixel's height at the view axis (2 tan(fovY/2) / height when centred), so that
     // channels of one wall with the same vertical extent and height share the texels.
     f.worldJitter = vec4(float(2.0 * tangents.halfHeight / double(req.height)), 0.0f, 0.0f, 0.0f);

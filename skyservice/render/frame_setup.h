@@ -4,6 +4,7 @@
 #pragma once
 
 #include "shaders/shared/frame_params.h"
+#include "skyservice/render/render_tuning.h"
 #include "skyservice/render/render_types.h"
 #include "skyservice/earth/window_lattice.h"
 #include "skyservice/render/window_analysis.h"
@@ -21,6 +22,7 @@ struct FrameInputs
     EyeOnWindow eyeOnWindow;        ///< where the eye lies on `window` (its centre is the eye's lattice node)
     const ViewRequest* request = nullptr;
     const QualitySettings* quality = nullptr;
+    const RenderTuning* tuning = nullptr;  ///< null: the defaults
     double animationTimeS = 0;      ///< seconds since the weather's valid time (drives wind drift)
     /// ENU -> ECEF rotation at a point fixed with the weather (the centre of its grid): the wind drift is
     /// turned into earth-fixed axes there, not at the eye, so clouds do not slide as the eye moves.

@@ -11,15 +11,28 @@
 namespace sky
 {
 
-SkyStatus createLightVolume(Renderer& r)
+SkyStatus createLightVolumePass(const Context& ctx, MemoryTracker& memory, LightVolumePass& pass)
 {
+    SKY_TRY(createProgram(ctx, pass.program, "light_volume"));
     ImageDesc d;
     d.viewType = VK_IMAGE_VIEW_TYPE_3D;
     d.format = VK_FORMAT_R16_SFLOAT;  // transmittance: half floats keep 11 bits down to 6e-5, less to 6e-8
     d.width = d.height = LIGHT_VOLUME_SIZE;
     d.depth = LIGHT_VOLUME_LEVELS;
-    SKY_TRY(createImage(r.ctx, r.memory, r.lightVolume, d, "light volume"));
-    return createImage(r.ctx, r.memory, r.lightVolumeFar, d, "light volume, far cascade");
+    SKY_TRY(createImage(ctx, memory, pass.image, d, "light volume"));
+    SKY_TRY(createImage(ctx, memory, pass.farImage, d, "light volume, far cascade"));
+    OneShot shot;
+    SKY_TRY(beginOneShot(ctx, shot));
+    for (Image* img : {&pass.image, &pass.farImage})
+        transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    return endOneShot(ctx, shot);
+}
+
+void destroyLightVolumePass(const Context& ctx, MemoryTracker& memory, LightVolumePass& pass)
+{
+    destroyImage(ctx, memory, pass.image);
+    destroyImage(ctx, memory, pass.farImage);
+    destroyProgram(ctx, pass.program);
 }
 
 namespace
@@ -38,7 +51,7 @@ vec4 volumePlacement(const FrameParams& frame, double texelM)
 
 }  // namespace
 
-void placeLightVolume(const QualitySettings& quality, FrameParams& frame)
+void placeLightVolume(const QualitySettings& quality, const RenderTuning& tuning, FrameParams& frame)
 {
     frame.lightVolume = vec4(0.0f);
     frame.lightVolumeFar = vec4(0.0f);
@@ -50,13 +63,13 @@ void placeLightVolume(const QualitySettings& quality, FrameParams& frame)
         rays >= quality.lightVolumeMinRays)
     {
         frame.lightVolume = volumePlacement(frame, quality.lightVolumeTexelM);
-        if (quality.lightVolumeFarCascade)
+        if (tuning.lightVolumeFarCascade)
             frame.lightVolumeFar = volumePlacement(frame, quality.lightVolumeTexelM * LIGHT_VOLUME_FAR_SCALE);
     }
     // Where neither volume reaches, lit samples this close to the last cone that marched its far
     // samples take those (cloud_lighting.glsl ConeTail).
-    frame.lightVolume.w = float(std::max(quality.coneTailReuseM, 0.0));
-    frame.lightVolumeFar.w = float(std::max(quality.coneTailReuseBeyondM, 0.0));
+    frame.lightVolume.w = float(std::max(tuning.coneTailReuseM, 0.0));
+    frame.lightVolumeFar.w = float(std::max(tuning.coneTailReuseBeyondM, 0.0));
 }
 
 namespace
@@ -85,19 +98,20 @@ void recordLightVolume(Renderer& r, VkCommandBuffer cmd, const FrameParams& fram
         return;
     LightVolumeKey key;
     key.inputs = lightVolumeInputs(frame);
-    key.window = r.window ? r.window->key : WindowKey{};
+    key.window = r.weather.window ? r.weather.window->key : WindowKey{};
     key.valid = true;
     // FrameParams is all vec4/uvec4 (std140 without padding): bytewise equality is field equality.
-    if (r.lightVolumeKey.valid && r.lightVolumeKey.window == key.window &&
-        std::memcmp(&r.lightVolumeKey.inputs, &key.inputs, sizeof(FrameParams)) == 0)
+    LightVolumePass& pass = r.lightVolume;
+    if (pass.key.valid && pass.key.window == key.window &&
+        std::memcmp(&pass.key.inputs, &key.inputs, sizeof(FrameParams)) == 0)
         return;
-    r.lightVolumeKey = key;
+    pass.key = key;
     for (uint32_t cascade = 0; cascade < (frame.lightVolumeFar.z > 0.0f ? 2u : 1u); ++cascade)
-        dispatch(r.ctx, cmd, r.lightVolumeProgram, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS, cascade,
-                 {DescriptorInfo(recording(r).frameUniforms), DescriptorInfo(r.weatherWindowImage, r.linearClamp),
-                  DescriptorInfo(r.baseNoise, r.linearRepeat), DescriptorInfo(r.detailNoise, r.linearRepeat),
-                  DescriptorInfo(r.curlNoise, r.linearRepeat),
-                  DescriptorInfo(cascade == 0 ? r.lightVolume : r.lightVolumeFar)});
+        dispatch(r.ctx, cmd, pass.program, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS, cascade,
+                 {DescriptorInfo(recording(r).frameUniforms), DescriptorInfo(r.weather.windowImage, r.linearClamp),
+                  DescriptorInfo(r.noise.base, r.linearRepeat), DescriptorInfo(r.noise.detail, r.linearRepeat),
+                  DescriptorInfo(r.noise.curl, r.linearRepeat),
+                  DescriptorInfo(cascade == 0 ? pass.image : pass.farImage)});
     computeBarrier(cmd);
 }
 

@@ -14,41 +14,16 @@
 namespace sky
 {
 
-/// Knobs of the cloud model and the march. Defaults are the published constants (docs/model.md), tuned.
+/// Knobs of the cloud model and the march that a user or a quality preset sets (the TOML config,
+/// config/default.toml). Defaults are the published constants (docs/model.md), tuned. The knobs that exist
+/// only for experiments are in RenderTuning (render_tuning.h).
 struct QualitySettings
 {
     uint32_t maxViewSteps = 160;     ///< view samples per ray at most
     uint32_t lightSamples = 6;       ///< cone samples toward the light (plus one long sample)
-    /// Beyond this distance (m) the light cone takes 3 cheap samples over the same length (0: never).
-    double lightLodDistanceM = 0.0;
     /// Cone samples (nearest first) that may take the full, detail-eroded density; the rest are cheap,
     /// and near the eye they come from the light volume (shaders/shared/light_volume.h).
     uint32_t fullConeSamples = 2;
-    /// Where no light volume reaches, a lit sample within this distance (m) of the last cone that marched
-    /// its far (cheap) samples takes those instead of marching its own; its near, detailed samples stay
-    /// its own (0: every cone marched in full). The next lit sample in a cloud is tens of metres away, the
-    /// far samples 300 m-4.4 km. H200, 1080p reprojected: -21..-28 % in the volumetric scenes at 400 m;
-    /// the 320x180 contact sheet of the bench scenes 52.5 dB of 0 (the Cb tower 47 dB). BENCHMARKS.md;
-    /// tests/gpu/test_cone_tail.cpp.
-    double coneTailReuseM = 400.0;
-    /// ...and only lit samples farther than this from the eye (m) do: nearer, the reused tails of points
-    /// nearer the cloud's surface brighten the cloud (a sunset deck 1.6/255 on average at 200 m, light
-    /// volume off). 15 km is about where the light volume's far cascade ends.
-    double coneTailReuseBeyondM = 15000.0;
-    /// Deep lit samples (behind a view transmittance below detailMinTransmittance) within this distance
-    /// (m) of the last cone marched take its light and march none (0: each marches its own). What they
-    /// add reaches the eye through less than a tenth. H200, 1080p: inside-cloud -10 % reprojected, -13 %
-    /// full, the deck -6 % full; the 320x180 contact sheet 59.9 dB of 0 (BENCHMARKS.md).
-    double deepLightReuseM = 400.0;
-    /// Beyond this distance (m) a light cone's detailed near samples (fullConeSamples) are taken as one
-    /// sample over their length (0: never): there the detail erosion has faded out (detailFadeEndM) and a
-    /// pixel spans tens of metres. One density lookup fewer per far lit sample, and the frame's costliest
-    /// rays are far ones (H200, 1080p reprojected: sunset -10 %, FL350 -7 %). The single sample sees less
-    /// of a cloud's thin sunlit skin, so the clouds it lights come out brighter (+1.2 % in the test); a
-    /// nearer limit changes more of the picture (the 320x180 contact sheet of the bench scenes against 0:
-    /// 46.2 dB at 25 km, 51.4 dB at 40 km; FL350's deck 39.3 / 43.9 dB). BENCHMARKS.md;
-    /// tests/gpu/test_cone_tail.cpp.
-    double coneNearMergeBeyondM = 40000.0;
     /// Texel size of the light volume on the ground (m; LIGHT_VOLUME_SIZE texels a side); 0: no volume,
     /// every cone sample marched.
     double lightVolumeTexelM = 160.0;
@@ -57,9 +32,6 @@ struct QualitySettings
     /// 640x360 reprojected (14 400 rays) with the eye flying: +0..15 % per frame with the volume; on the
     /// H200 at 1920x1080 reprojected (130 000 rays): -6..-27 %.
     uint32_t lightVolumeMinRays = 50000;
-    /// With the light volume, also its far cascade of 2x wider texels (15.4 km around the eye): lit
-    /// samples beyond the volume read it instead of marching the whole cone (shaders/shared/light_volume.h).
-    bool lightVolumeFarCascade = true;
     /// View samples behind a view transmittance below this take the base shape without detail erosion
     /// (0: never): there little of the sample reaches the eye. H200, 1080p reprojected: -4..-7 % per frame
     /// in the volumetric scenes at 0.1 (-7..-10 % at 0.2); pictures 47-56 dB of those without it at 0.1
@@ -77,8 +49,6 @@ struct QualitySettings
     /// too dark (test SunSideOfACumulusIsBrighterThanItsShadowSide fails) and frames were 1.5-3x cheaper
     /// (H200, 1080p reprojected, measured against the limit with a floor everywhere: BENCHMARKS.md).
     double maxStepOpticalDepth = 1.0;
-    double detailFadeStartM = 8000.0;  ///< detail erosion fades out from here...
-    double detailFadeEndM = 25000.0;   ///< ...to here (beyond, its noise is finer than a pixel)
     uint32_t octaves = 3;            ///< multiple-scattering octaves (Wrenninge 2013)
     double extinctionPerM = 0.045;   ///< cloud extinction at density 1 (1/m); ~20 m mean free path
     double detailErosion = 0.35;     ///< strength of the detail-noise erosion
@@ -100,9 +70,6 @@ struct QualitySettings
     double maxDistanceM = 700000.0;      ///< no cloud marched beyond this distance
     uint32_t noiseSeed = 1;              ///< seed of every noise texture
     bool detail = true;                  ///< detail erosion on
-    /// The march's search jumps over stretches that the weather's column bounds show empty
-    /// (shaders/shared/column_bounds.h); false samples every search step (tests, A/B).
-    bool emptySpaceSkipping = true;
     /// Reprojected frames march one pixel of every NxN block with the eye inside an overcast cloud layer
     /// (between its base and top, coverage >= 0.8 around it: fog; reprojection.h kOvercastCoverage): 2 (a
     /// quarter of the pixels, 4x those of the usual 4x4 block), or 1 (every pixel: the frame equals a full
@@ -111,10 +78,6 @@ struct QualitySettings
     /// overcast deck (tests/gpu/test_flight_path.cpp) block 2 keeps the display image 50+ dB of the
     /// full render. H200, 1080p: inside-cloud 0.748 -> 0.277 ms (BENCHMARKS.md).
     uint32_t insideCloudBlockPx = 2;
-    /// The march launches its workgroup rows costliest first, by the lookups the previous frame of the
-    /// same shape counted (shaders/shared/march_order.h); false: always the interleaved order (A/B). It
-    /// changes no pixel. H200, 1080p: see BENCHMARKS.md.
-    bool costOrderedMarch = true;
     bool highCloud = true;               ///< cirrus layer on
     uint32_t accumulationFrames = 1;     ///< frames averaged, each with new march jitter and sub-pixel offset
     uint32_t shadowSteps = 48;           ///< density samples per shadow-map texel along the light ray

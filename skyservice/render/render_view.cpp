@@ -93,16 +93,16 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
     v.camera = computeCameraFrame(request.pose);
     v.sunMoon = computeSunMoon(request.unixTimeS, v.camera.eye.latDeg, v.camera.eye.lonDeg, v.camera.eye.altitudeM);
     SKY_TRY(updateWeatherWindow(r, v.camera, quality));  // swaps a staged weather in when it is ready
-    const WeatherWindow& window = r.window->window;
+    const WeatherWindow& window = r.weather.window->window;
     const EyeOnWindow eyeOnWindow =
         placeEyeOnWindow(window.centreLatDeg, window.centreLonDeg, v.camera.eye.latDeg, v.camera.eye.lonDeg);
     const FrameOutputs outputs = FrameOutputs::of(request, quality);
     SKY_TRY(ensureOutputImages(r, request.width, request.height, outputs, quality.reprojected));
     if (quality.reprojected)
     {
-        r.reprojection.block =
+        r.reconstruct.reprojection.block =
             chooseMarchBlock(window, v.camera.eye.altitudeM, eyeOnWindow.offsetM, quality.insideCloudBlockPx);
-        SKY_TRY(ensureReprojectionImages(r, request.width, request.height, r.reprojection.block.blockPx));
+        SKY_TRY(ensureReprojectionImages(r, request.width, request.height, r.reconstruct.reprojection.block.blockPx));
     }
     SKY_TRY(prepareShadowMap(r, request));
 
@@ -110,21 +110,22 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
     in.camera = &v.camera;
     in.sunMoon = &v.sunMoon;
     in.window = &window;
-    in.summary = &r.window->summary;
+    in.summary = &r.weather.window->summary;
     in.eyeOnWindow = eyeOnWindow;
     in.request = &request;
     in.quality = &quality;
-    in.animationTimeS = double(request.unixTimeS - r.weather->validTimeUnixS);
+    in.tuning = &r.tuning;
+    in.animationTimeS = double(request.unixTimeS - r.weather.snapshot->validTimeUnixS);
     {
         // The drift frame is anchored at the weather grid's centre: the same on every machine and for
         // every eye position (multi-channel seams, no sliding when flying).
-        const LatLonGrid& g = r.weather->grid;
+        const LatLonGrid& g = r.weather.snapshot->grid;
         EyePose anchor;
         anchor.latDeg = std::clamp(g.lat0Deg + 0.5 * g.dLatDeg * double(g.nLat > 0 ? g.nLat - 1 : 0), -90.0, 90.0);
         anchor.lonDeg = g.lon0Deg + 0.5 * g.dLonDeg * double(g.nLon > 0 ? g.nLon - 1 : 0);
         in.driftEnuToEcef = computeCameraFrame(anchor).enuToEcef;
     }
-    v.light = estimateLighting(r, v.camera, v.sunMoon, r.window->summary);
+    v.light = estimateLighting(r.atmosphere, v.camera, v.sunMoon, r.weather.window->summary);
     // Pre-exposure: every light source is scaled by the exposure before it reaches the GPU, so that the
     // half-float images hold values near 1 by day and by moonlight alike (a full-moon sky is ~1e-7
     // W m^-2 sr^-1 nm^-1, below half precision). Linear outputs are divided by `exposure` for absolute units.
@@ -137,11 +138,11 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
     if (quality.reprojected)
     {
         std::string why;
-        const bool useHistory = historyUsable(r.reprojection, request, v.camera, why);
-        r.reprojection.lastDropReason = useHistory ? "" : why;
-        fillReprojectionParams(v.params, r.reprojection, request, v.camera, useHistory);
+        const bool useHistory = historyUsable(r.reconstruct.reprojection, request, v.camera, why);
+        r.reconstruct.reprojection.lastDropReason = useHistory ? "" : why;
+        fillReprojectionParams(v.params, r.reconstruct.reprojection, request, v.camera, useHistory);
     }
-    placeLightVolume(quality, v.params);  // after the march block is known: it counts the rays
+    placeLightVolume(quality, r.tuning, v.params);  // after the march block is known: it counts the rays
     // The composite's optional outputs (frame_recording.h FrameOutputs).
     if (outputs.sky)
         v.params.image.w |= FRAME_FLAG_SKY_LAYER;
@@ -154,9 +155,8 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
 
 void forgetGpuCaches(Renderer& r)
 {
-    r.atmosphereRadiusM = 0;  // the LUTs recorded for a failed frame may never have been computed
-    r.lightVolumeKey.valid = false;  // nor the light volume
-    r.skyViewInputsValid = false;
+    forgetAtmosphereLuts(r.atmosphere);  // the LUTs recorded for a failed frame may never have been computed
+    r.lightVolume.key.valid = false;     // nor the light volume
 }
 
 // Records and submits frame `k` of `frames` (accumulation) into the next frame context.
@@ -209,16 +209,16 @@ void fillFacts(const Renderer& r, const PreparedView& v, const ViewRequest& requ
     facts.moonIlluminatedFraction = v.sunMoon.moonIlluminatedFraction;
     facts.exposure = v.light.exposure;
     facts.moonIsKeyLight = moonIsKeyLight(v.sunMoon);
-    facts.weatherVersion = r.weatherVersion;
-    facts.weatherValidTimeUnixS = r.weather->validTimeUnixS;
-    facts.marchBlockPx = quality.reprojected ? r.reprojection.block.blockPx : 1u;
-    facts.marchBlockReason = quality.reprojected ? r.reprojection.block.reason : "";
+    facts.weatherVersion = r.weather.version;
+    facts.weatherValidTimeUnixS = r.weather.snapshot->validTimeUnixS;
+    facts.marchBlockPx = quality.reprojected ? r.reconstruct.reprojection.block.blockPx : 1u;
+    facts.marchBlockReason = quality.reprojected ? r.reconstruct.reprojection.block.reason : "";
 }
 
 // The reprojection history after a reprojected frame was submitted: the next frame reprojects this one.
 void advanceHistory(Renderer& r, const ViewRequest& request, const CameraFrame& camera)
 {
-    ReprojectionHistory& h = r.reprojection;
+    ReprojectionHistory& h = r.reconstruct.reprojection;
     h.valid = true;
     h.current ^= 1u;
     h.frameIndex++;

@@ -1,6 +1,14 @@
 // SPDX-License-Identifier: MIT
 // The headless renderer: owns the Vulkan context and every GPU resource, renders one view at a time.
 //
+// What it holds: the context, the memory tracker and the samplers; one object per pass, each owning its
+// program(s), its images and the key of what they hold (NoiseTextures, AtmospherePass, LightVolumePass,
+// MarchPass, ReconstructPass, CompositePass, ShadowMapPass: one header each); the weather in one place
+// (RendererWeather: the snapshot and its version, the staged weather, the window and its workers); the
+// frames in flight (FrameContext); and the experiment knobs (RenderTuning). A frame is prepared on the CPU
+// by render_view.cpp and recorded pass by pass by frame_recording.cpp; a pass's record function reads the
+// images of the passes before it through the Renderer.
+//
 // Usage:
 //   Renderer r;  createRenderer(r, options)  -> noise and atmosphere tables are built once
 //   setWeather(r, snapshot)                  -> the weather to draw (copied), from the next frame on
@@ -11,22 +19,19 @@
 // Every function that can fail at run time returns a SkyStatus naming what failed.
 #pragma once
 
-#include "shaders/shared/atmosphere_params.h"
-#include "skyservice/earth/weather_window.h"
+#include "skyservice/render/atmosphere_passes.h"
+#include "skyservice/render/composite_pass.h"
 #include "skyservice/render/frame_context.h"
+#include "skyservice/render/render_tuning.h"
 #include "skyservice/render/render_types.h"
+#include "skyservice/render/renderer_weather.h"
 #include "skyservice/render/light_volume.h"
-#include "skyservice/render/march_order.h"
-#include "skyservice/render/reprojection.h"
+#include "skyservice/render/march_pass.h"
+#include "skyservice/render/noise_textures.h"
+#include "skyservice/render/reconstruct_pass.h"
 #include "skyservice/render/shadow_map.h"
-#include "skyservice/render/weather_stage.h"
-#include "skyservice/render/window_analysis.h"
-#include "skyservice/render/window_provider.h"
-#include "skyservice/sky/atmosphere_reference.h"
 #include "skyservice/vk/programs.h"
 #include "weather_ingest/weather_snapshot.h"
-
-#include <chrono>
 
 namespace sky
 {
@@ -41,60 +46,23 @@ struct Renderer
 {
     Context ctx;
     MemoryTracker memory;
+    /// The experiment knobs (render_tuning.h): the defaults, unless a benchmark or a test sets them.
+    RenderTuning tuning;
 
-    Program baseNoiseProgram, detailNoiseProgram, curlNoiseProgram;
-    Program transmittanceProgram, multiscatterProgram, skyViewProgram, aerialPerspectiveProgram;
-    Program cloudProgram, compositeProgram, reconstructProgram, lightVolumeProgram;
+    NoiseTextures noise;          ///< noise_textures.h
+    AtmospherePass atmosphere;    ///< the sky's LUTs (atmosphere_passes.h)
+    LightVolumePass lightVolume;  ///< the far part of the light cones around the eye (light_volume.h)
+    MarchPass march;              ///< the cloud march and its full-resolution images (march_pass.h)
+    ReconstructPass reconstruct;  ///< reprojection's reconstruct pass and history (reconstruct_pass.h)
+    CompositePass composite;      ///< the display image and the other outputs (composite_pass.h)
+    ShadowMapPass shadowPass;     ///< shadow_map.h
+    RendererWeather weather;      ///< the weather drawn, its window and their workers (renderer_weather.h)
 
-    Image baseNoise, detailNoise, curlNoise, blueNoise;
-    Image transmittanceLut, multiscatterLut, skyViewLut;
-    Image aerialInscatterLut, aerialTransmittanceLut;  ///< 3D, AERIAL_LUT_* (atmosphere_params.h)
-    Image weatherWindowImage;
-    Image columnBoundsImage;  ///< the window's column-bounds pyramid (shaders/shared/column_bounds.h)
-    Image lightVolume;  ///< 3D, light_volume.h: the far part of the light cones around the eye
-    Image lightVolumeFar;  ///< its far cascade (LIGHT_VOLUME_FAR_SCALE times wider texels)
-    LightVolumeKey lightVolumeKey;  ///< what lightVolume holds (valid = false: nothing yet)
-    MarchOrder marchOrder;  ///< the march's workgroup-row order and the lookups of the last march (march_order.h)
-    uint32_t marchDispatchRanges = 1;  ///< contiguous ranges the device runs a dispatch in (dispatchRanges)
-    Image cloudImage, depthImage, displayImage;
-    Image skyImage, cloudLayerImage;  ///< compositing layers, only while frames ask for them (kReadSky, kReadCloudLayer)
-    Image linearImage;  ///< only while frames ask for it (QualitySettings::linearOutput)
-    // Reprojection (created on the first reprojected frame): the marched pixels at block resolution
-    // (the size of the block in use), and the reconstructed cloud radiance, alpha and depth of the last
-    // two frames (ping-pong), packed in one 64-bit texel (shaders/lib/cloud_history.glsl).
-    Image freshCloudImage, freshDepthImage;
-    Image history[2];
-    // 1x1 images bound where a pass has nothing to read or write (every binding needs an image):
-    // the linear frame when none is asked for, the history in full-resolution frames.
-    Image linearStandIn, historyStandIn, depthStandIn;
-    ReprojectionHistory reprojection;
     /// The per-frame objects (frame_context.h), used in turn; frames[currentFrame] is the one being
     /// recorded, or the last one submitted.
     FrameContext frames[kFramesInFlight];
     uint32_t currentFrame = 0;
     VkSampler linearRepeat = VK_NULL_HANDLE, linearClamp = VK_NULL_HANDLE, nearestRepeat = VK_NULL_HANDLE;
-    ShadowMapPass shadowPass;
-
-    std::shared_ptr<const WeatherSnapshot> weather;  ///< shared with the window worker thread
-    uint64_t weatherVersion = 0;  ///< of `weather`: a new one per setWeather or staged weather swapped in
-    uint64_t weatherVersionsIssued = 0;  ///< the last version given out (staged weathers get theirs early)
-    WeatherStage weatherStage;    ///< a new weather being prepared on a worker thread (weather_stage.h)
-    /// The window on the GPU (centred on the lattice node of the eye, earth/window_lattice.h): frames
-    /// whose eye stays in that node's cell, with the same weather and window settings, reuse it.
-    std::shared_ptr<const PreparedWindow> window;
-    bool windowOnGpu = false;      ///< weatherWindowImage and columnBoundsImage hold `window` (false after a failed upload)
-    WindowPrefetch windowPrefetch; ///< the next cell's window, made on a worker thread
-    glm::dvec3 lastEyeEcefM{0.0};  ///< eye of the previous frame: its motion says which cell is next
-    std::chrono::steady_clock::time_point lastFrameClock{};  ///< when the previous frame began (real time)
-    double eyeSpeedMps = 0;        ///< estimate of the eye's horizontal speed: it sets the look-ahead
-    double atmosphereRadiusM = 0;  ///< bottom radius the transmittance/multiscatter LUTs were built for
-    /// The inputs the sky-view LUT was last built from (atmosphere_passes.cpp reuses it when equal).
-    SkyViewPushConstants skyViewPush{};
-    AtmosphereParams skyViewAtmosphere{};
-    bool skyViewInputsValid = false;
-    double noiseStartupMs = 0;     ///< GPU time to generate the noise textures
-    AtmosphereReference cpuAtmosphere;   ///< CPU copy of the atmosphere LUTs, for the lighting estimate
-    double cpuAtmosphereRadiusM = -1;    ///< ground radius cpuAtmosphere was built for
 };
 
 /// A frame submitted by submitView and not yet collected by finishView.
@@ -124,7 +92,7 @@ void setWeather(Renderer& r, const WeatherSnapshot& snapshot);
 /// window prepared on a worker thread while frames keep drawing the current weather; the first frame
 /// after that (and after releaseStagedWeather with StageSwap::WhenReleased) draws it and drops the
 /// reprojection history. A newer stage replaces one not swapped in yet; a bad weather is dropped (the
-/// current one stays; weatherStage.lastError says why). With no weather drawn yet, the next frame waits
+/// current one stays; weather.stage.lastError says why). With no weather drawn yet, the next frame waits
 /// for it. Returns the version the weather will have (RenderResult::weatherVersion).
 uint64_t stageWeather(Renderer& r, WeatherMaker make, StageSwap swap = StageSwap::WhenReady);
 uint64_t stageWeather(Renderer& r, std::shared_ptr<const WeatherSnapshot> snapshot,

@@ -54,8 +54,9 @@ ShadowMapDrawing drawingFor(const Renderer& r, const ViewRequest& request, const
     d.quality = quality;
     d.quality.readback = false;
     d.quality.linearOutput = false;
-    d.weatherVersion = r.weatherVersion;
-    d.window = r.window.get();
+    d.tuning = r.tuning;
+    d.weatherVersion = r.weather.version;
+    d.window = r.weather.window.get();
     d.unixTimeS = request.unixTimeS;
     d.eyeEcefM = camera.eyeEcefM;
     d.lightIsMoon = moonIsKeyLight(sunMoon);
@@ -67,8 +68,8 @@ ShadowMapDrawing drawingFor(const Renderer& r, const ViewRequest& request, const
 bool sameMap(const ShadowMapDrawing& last, const ShadowMapDrawing& next)
 {
     if (!last.valid || last.sizeTexels != next.sizeTexels || last.extentM != next.extentM ||
-        !(last.quality == next.quality) || last.weatherVersion != next.weatherVersion || last.window != next.window ||
-        last.unixTimeS != next.unixTimeS || last.lightIsMoon != next.lightIsMoon)
+        !(last.quality == next.quality) || !(last.tuning == next.tuning) || last.weatherVersion != next.weatherVersion ||
+        last.window != next.window || last.unixTimeS != next.unixTimeS || last.lightIsMoon != next.lightIsMoon)
         return false;
     const double texelM = next.extentM / double(next.sizeTexels);
     const double shadowShiftM = glm::length(shadowOffsetM(next.lightEnu) - shadowOffsetM(last.lightEnu));
@@ -219,9 +220,9 @@ void drawShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request,
     VkCommandBuffer cmd = frame.cmd;
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, frame.timestamps, kTsShadowBegin);
     dispatch(r.ctx, cmd, r.shadowPass.program, size, size, 1, push,
-             {DescriptorInfo(frame.frameUniforms), DescriptorInfo(r.weatherWindowImage, r.linearClamp),
-              DescriptorInfo(r.baseNoise, r.linearRepeat), DescriptorInfo(r.detailNoise, r.linearRepeat),
-              DescriptorInfo(r.curlNoise, r.linearRepeat), DescriptorInfo(r.shadowPass.image)});
+             {DescriptorInfo(frame.frameUniforms), DescriptorInfo(r.weather.windowImage, r.linearClamp),
+              DescriptorInfo(r.noise.base, r.linearRepeat), DescriptorInfo(r.noise.detail, r.linearRepeat),
+              DescriptorInfo(r.noise.curl, r.linearRepeat), DescriptorInfo(r.shadowPass.image)});
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsShadowEnd);
     {
@@ -242,7 +243,7 @@ void drawShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request,
         transitionImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
     }
     drawing.metadata = shadowMapMetadata(g, sunMoon, camera.localEarthRadiusM, request.unixTimeS,
-                                         r.weather->validTimeUnixS);
+                                         r.weather.snapshot->validTimeUnixS);
     ShadowMapReference& ref = drawing.reference;
     ref.centreLatDeg = g.centreLatDeg;
     ref.centreLonDeg = g.centreLonDeg;

@@ -15,6 +15,7 @@
 
 #include "shaders/shared/shadow_map_params.h"
 #include "skyservice/render/frame_context.h"
+#include "skyservice/render/render_tuning.h"
 #include "skyservice/render/render_types.h"
 #include "skyservice/sky/ephemeris.h"
 #include "skyservice/vk/programs.h"
@@ -101,6 +102,7 @@ struct ShadowMapDrawing
     uint32_t sizeTexels = 0;
     double extentM = 0;
     QualitySettings quality;          ///< with readback and linearOutput cleared (they change no texel)
+    RenderTuning tuning;
     uint64_t weatherVersion = 0;
     const void* window = nullptr;     ///< the weather window drawn from (Renderer::window)
     int64_t unixTimeS = 0;            ///< the view's time (the wind drift steps once per second)
@@ -140,7 +142,7 @@ SkyStatus prepareShadowMap(Renderer& r, const ViewRequest& request);
 /**
  * Record the shadow map of the frame into its command buffer, and the copies of its texels.
  *
- * @param[in,out] r the renderer; the frame's uniforms, r.window and r.weatherWindowImage must hold the frame.
+ * @param[in,out] r the renderer; the frame's uniforms, r.weather.window and r.weather.windowImage must hold the frame.
  * @param[in,out] frame the frame context being recorded (its readback buffer must have room:
  *   frameReadbackBytes counts the shadow map).
  * @param[in] request the view (shadowMapSize, shadowMapExtentM; validated; readback bits).

@@ -38,7 +38,7 @@ inline constexpr double kEyeSpeedMemoryS = 2.0;
 /// What a window was made from: the same key gives the same texels.
 struct WindowKey
 {
-    uint64_t weatherVersion = 0;  ///< Renderer::weatherVersion when it was made
+    uint64_t weatherVersion = 0;  ///< RendererWeather::version when it was made
     WindowCentre centre;
     double halfExtentM = 0, warpRadiusM = 0;
     bool operator==(const WindowKey& o) const

@@ -9,62 +9,63 @@ namespace sky
 SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const QualitySettings& quality)
 {
     const auto now = std::chrono::steady_clock::now();
-    WindowKey key{r.weatherVersion, windowCentreForEye(camera.eye.latDeg, camera.eye.lonDeg),
+    RendererWeather& w = r.weather;
+    WindowKey key{w.version, windowCentreForEye(camera.eye.latDeg, camera.eye.lonDeg),
                   quality.windowHalfExtentM, quality.windowWarpRadiusM};
     // A staged weather whose window for this node is ready replaces the current one from this frame on
     // (with nothing drawn yet, this frame waits for it: there is no old weather to keep drawing).
-    if (std::optional<StagedResult> staged = advanceStage(r.weatherStage, key, !r.weather))
+    if (std::optional<StagedResult> staged = advanceStage(w.stage, key, !w.snapshot))
     {
-        r.weather = staged->weather;
-        r.weatherVersion = staged->version;
-        r.window = staged->window;
-        r.windowOnGpu = false;
+        w.snapshot = staged->weather;
+        w.version = staged->version;
+        w.window = staged->window;
+        w.windowOnGpu = false;
         dropHistory(r);  // the previous frame shows other clouds
-        key.weatherVersion = r.weatherVersion;
+        key.weatherVersion = w.version;
     }
-    if (!r.weather)
+    if (!w.snapshot)
     {
         setWeather(r, WeatherSnapshot{});  // no weather given (or the staged one was refused): an empty sky
-        key.weatherVersion = r.weatherVersion;
+        key.weatherVersion = w.version;
     }
-    if (!r.window || !(r.window->key == key))
+    if (!w.window || !(w.window->key == key))
     {
-        r.window = takeWindow(r.windowPrefetch, r.weather, key);
-        r.windowOnGpu = false;
+        w.window = takeWindow(w.prefetch, w.snapshot, key);
+        w.windowOnGpu = false;
     }
-    if (!r.windowOnGpu)  // stays false if the upload fails: the next frame uploads again
+    if (!w.windowOnGpu)  // stays false if the upload fails: the next frame uploads again
     {
         // Both images in one submit: a window made on the frame path (first frame, a jump, a prefetch that
         // missed) waits for the GPU once.
-        const std::vector<uint16_t>& texels = r.window->gpuTexelsHalf;
-        const std::vector<uint8_t>& bounds = r.window->columnBounds;
+        const std::vector<uint16_t>& texels = w.window->gpuTexelsHalf;
+        const std::vector<uint8_t>& bounds = w.window->columnBounds;
         SKY_TRY(uploadImages(r.ctx, r.memory,
-                             {ImageUpload{&r.weatherWindowImage, texels.data(), texels.size() * sizeof(uint16_t),
+                             {ImageUpload{&w.windowImage, texels.data(), texels.size() * sizeof(uint16_t),
                                           VK_IMAGE_LAYOUT_GENERAL},
-                              ImageUpload{&r.columnBoundsImage, bounds.data(), bounds.size(), VK_IMAGE_LAYOUT_GENERAL}}));
-        r.windowOnGpu = true;
+                              ImageUpload{&w.columnBoundsImage, bounds.data(), bounds.size(), VK_IMAGE_LAYOUT_GENERAL}}));
+        w.windowOnGpu = true;
     }
     // The next node: the first one along the eye's horizontal motion, prefetched once it is within the
     // look-ahead (1.5 s of motion at the eye's speed, window_provider.h). The speed comes from real time
     // between frames; it only says when a window is made, never what is drawn.
-    glm::dvec3 moveEnu = glm::transpose(camera.enuToEcef) * (camera.eyeEcefM - r.lastEyeEcefM);
-    const bool hadFrame = r.lastFrameClock != std::chrono::steady_clock::time_point{};
-    const double dtS = std::chrono::duration<double>(now - r.lastFrameClock).count();
-    r.lastEyeEcefM = camera.eyeEcefM;
-    r.lastFrameClock = now;
+    glm::dvec3 moveEnu = glm::transpose(camera.enuToEcef) * (camera.eyeEcefM - w.lastEyeEcefM);
+    const bool hadFrame = w.lastFrameClock != std::chrono::steady_clock::time_point{};
+    const double dtS = std::chrono::duration<double>(now - w.lastFrameClock).count();
+    w.lastEyeEcefM = camera.eyeEcefM;
+    w.lastFrameClock = now;
     double moveM = glm::length(glm::dvec2(moveEnu));
     if (!hadFrame || moveM >= kReprojectionMaxMoveM)
-        r.eyeSpeedMps = 0;  // a jump, not a flight
+        w.eyeSpeedMps = 0;  // a jump, not a flight
     else
-        r.eyeSpeedMps = updateEyeSpeedMps(r.eyeSpeedMps, moveM, dtS);
+        w.eyeSpeedMps = updateEyeSpeedMps(w.eyeSpeedMps, moveM, dtS);
     if (hadFrame && moveM > 1e-3 && moveM < kReprojectionMaxMoveM)
     {
         if (std::optional<WindowCentre> next =
-                nextWindowNode(camera, glm::dvec2(moveEnu), windowLookAheadM(r.eyeSpeedMps)))
+                nextWindowNode(camera, glm::dvec2(moveEnu), windowLookAheadM(w.eyeSpeedMps)))
         {
             WindowKey nextKey = key;
             nextKey.centre = *next;
-            prefetchWindow(r.windowPrefetch, r.weather, nextKey);
+            prefetchWindow(w.prefetch, w.snapshot, nextKey);
         }
     }
     return SkyStatus::success();

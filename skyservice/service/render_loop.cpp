@@ -360,8 +360,8 @@ void RenderLoop::Impl::frameDone(uint64_t id, const SkyStatus& status, double ms
         s.frameWeather = FrameWeather{lastDrawn.serviceVersion, lastDrawn.source, result.weatherValidTimeUnixS, true};
     }
     s.weatherPending = weatherSchedule.pending();
-    s.windowsMadeOnFramePath = r.windowPrefetch.madeOnFrame;
-    s.windowsFromWorker = r.windowPrefetch.used + r.weatherStage.swapped;
+    s.windowsMadeOnFramePath = r.weather.prefetch.madeOnFrame;
+    s.windowsFromWorker = r.weather.prefetch.used + r.weather.stage.swapped;
     s.lastRenderError = error;
     s.deviceMemoryBytes = memory;
     s.hostReadbackBytes = hostReadback;

@@ -81,7 +81,7 @@ void WeatherSchedule::afterFrame(const Renderer& r)
 {
     if (!staged_)
         return;
-    if (r.weatherVersion == staged_->rendererVersion)
+    if (r.weather.version == staged_->rendererVersion)
     {
         drawn_ = staged_->weather;
         staged_.reset();
@@ -91,7 +91,7 @@ void WeatherSchedule::afterFrame(const Renderer& r)
     else if (!weatherStagePending(r))
     {
         SKY_LOG_ERROR("weather %s at %s: %s (keeping %s)", staged_->weather.source.c_str(),
-                      formatIso8601Utc(staged_->weather.sampledAtUnixS).c_str(), r.weatherStage.lastError.c_str(),
+                      formatIso8601Utc(staged_->weather.sampledAtUnixS).c_str(), r.weather.stage.lastError.c_str(),
                       drawn_.source.c_str());
         staged_.reset();
     }

@@ -39,6 +39,14 @@ protected:
         EXPECT_TRUE(s.ok()) << s.message;
         return result;
     }
+    /// renderOk with the renderer's experiment knobs (render_tuning.h) set to `tuning` for this render only.
+    static RenderResult renderTuned(const ViewRequest& view, const QualitySettings& quality, const RenderTuning& tuning)
+    {
+        renderer->tuning = tuning;
+        RenderResult result = renderOk(view, quality);
+        renderer->tuning = RenderTuning{};
+        return result;
+    }
     void TearDown() override
     {
         EXPECT_EQ(renderer->ctx.validationMessages.load(), 0u) << "Vulkan validation messages";

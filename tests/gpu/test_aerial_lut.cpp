@@ -91,10 +91,10 @@ TEST_F(AerialLut, TexelsMatchTheRayIntegral)
         v.height = 18;
         renderOk(v, testQuality());
         // The inputs of the LUTs this frame used (kept by the renderer for its reuse check).
-        const AtmosphereReference cpu = createAtmosphereReference(renderer->skyViewAtmosphere);
-        const SkyViewPushConstants c = renderer->skyViewPush;
-        std::vector<glm::vec3> inscatter = readLut(renderer->aerialInscatterLut);
-        std::vector<glm::vec3> transmittance = readLut(renderer->aerialTransmittanceLut);
+        const AtmosphereReference cpu = createAtmosphereReference(renderer->atmosphere.skyViewAtmosphere);
+        const SkyViewPushConstants c = renderer->atmosphere.skyViewPush;
+        std::vector<glm::vec3> inscatter = readLut(renderer->atmosphere.aerialInscatterLut);
+        std::vector<glm::vec3> transmittance = readLut(renderer->atmosphere.aerialTransmittanceLut);
         ASSERT_EQ(inscatter.size(), size_t(AERIAL_LUT_WIDTH) * AERIAL_LUT_HEIGHT * AERIAL_LUT_SLICES);
 
         float worstInscatter = 0, worstTransmittance = 0;
@@ -130,8 +130,8 @@ TEST_F(AerialLut, HazeGrowsWithDistance)
     v.width = 32;
     v.height = 18;
     renderOk(v, testQuality());
-    std::vector<glm::vec3> inscatter = readLut(renderer->aerialInscatterLut);
-    std::vector<glm::vec3> transmittance = readLut(renderer->aerialTransmittanceLut);
+    std::vector<glm::vec3> inscatter = readLut(renderer->atmosphere.aerialInscatterLut);
+    std::vector<glm::vec3> transmittance = readLut(renderer->atmosphere.aerialTransmittanceLut);
     const int y = AERIAL_LUT_HEIGHT / 2 - 2;  // just above the horizon: the longest paths through the air
     for (int x = 0; x < AERIAL_LUT_WIDTH; x += 7)
         for (int k = 1; k < AERIAL_LUT_SLICES; ++k)
@@ -156,7 +156,7 @@ TEST_F(AerialLut, LevelFlightKeepsTheLutsForManyFrames)
         ViewRequest moved = v;
         moved.pose.latDeg += northM / 111132.0;
         renderOk(moved, testQuality());
-        return renderer->skyViewPush;
+        return renderer->atmosphere.skyViewPush;
     };
     SkyViewPushConstants start = pushAfter(0.0);
     int rebuilds = 0;
@@ -179,9 +179,9 @@ TEST_F(AerialLut, VisibilityHazesTheDistantGround)
 {
     setWeather(*renderer, WeatherSnapshot{});
     const double clear = horizonRows(300.0, 40000.0).contrast();
-    const AtmosphereParams clearAir = renderer->skyViewAtmosphere;
+    const AtmosphereParams clearAir = renderer->atmosphere.skyViewAtmosphere;
     const double hazy = horizonRows(300.0, 2000.0).contrast();
-    EXPECT_GT(renderer->skyViewAtmosphere.mieExtinction.y, 10.0f * clearAir.mieExtinction.y);
+    EXPECT_GT(renderer->atmosphere.skyViewAtmosphere.mieExtinction.y, 10.0f * clearAir.mieExtinction.y);
     EXPECT_GT(clear, 0.1) << "the ground does not stand out from the sky at 40 km";
     EXPECT_LT(hazy, 0.3 * clear) << "2 km of visibility did not haze the ground (contrast " << hazy << " vs "
                                  << clear << " at 40 km)";

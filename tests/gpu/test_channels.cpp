@@ -132,7 +132,7 @@ protected:
     static RenderResult fly(Renderer& r, ViewRequest& v, const Motion& motion, int frames)
     {
         dropHistory(r);
-        r.reprojection.frameIndex = 0;
+        r.reconstruct.reprojection.frameIndex = 0;
         RenderResult last;
         for (int k = 0; k < frames; ++k)
         {
@@ -240,7 +240,7 @@ TEST_F(Channels, SameInputsGiveIdenticalBytesOnAnotherRenderer)
     setWeather(other, deck());
     ViewRequest va = channel(0.0), vb = va;
     dropHistory(*renderer);
-    renderer->reprojection.frameIndex = 0;
+    renderer->reconstruct.reprojection.frameIndex = 0;
     int identical = 0;
     const int frames = 6;
     for (int k = 0; k < frames; ++k)

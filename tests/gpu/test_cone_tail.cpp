@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Lit samples take light from earlier cones (shaders/clouds/cloud_lighting.glsl): far ones the far part
-// of the last cone that marched it (QualitySettings::coneTailReuseM, ConeTail), deep ones the whole light
+// of the last cone that marched it (RenderTuning::coneTailReuseM, ConeTail), deep ones the whole light
 // of the last cone (deepLightReuseM); far cones take their detailed near samples as one
 // (coneNearMergeBeyondM). The march takes fewer lookups, the picture stays that of every cone marched in
 // full, and lit samples nearer than the limits march their own cones.
@@ -22,19 +22,19 @@ namespace
 class ConeTail : public GpuFixture
 {
 protected:
-    static QualitySettings quality(double reuseM, double beyondM)
+    static RenderTuning tail(double reuseM, double beyondM)
     {
-        QualitySettings q = testQuality();
-        q.coneTailReuseM = reuseM;
-        q.coneTailReuseBeyondM = beyondM;
-        return q;
+        RenderTuning t;
+        t.coneTailReuseM = reuseM;
+        t.coneTailReuseBeyondM = beyondM;
+        return t;
     }
-    /// testQuality() with one distance knob set.
-    static QualitySettings with(double QualitySettings::*knob, double valueM)
+    /// The default knobs with one distance set.
+    static RenderTuning with(double RenderTuning::*knob, double valueM)
     {
-        QualitySettings q = testQuality();
-        q.*knob = valueM;
-        return q;
+        RenderTuning t;
+        t.*knob = valueM;
+        return t;
     }
     static double totalLookups(const RenderResult& r)
     {
@@ -47,8 +47,8 @@ protected:
 TEST_F(ConeTail, FarLitSamplesTakeTheLastTailAndKeepThePicture)
 {
     const ViewRequest v = builtinCumulonimbus320(*renderer);
-    const RenderResult marched = renderOk(v, quality(0.0, 15000.0));
-    const RenderResult reused = renderOk(v, quality(400.0, 15000.0));
+    const RenderResult marched = renderTuned(v, testQuality(), tail(0.0, 15000.0));
+    const RenderResult reused = renderTuned(v, testQuality(), tail(400.0, 15000.0));
     ASSERT_GT(cloudStats(marched).cloudPixels, 5000u);
     const double psnr = psnrCloud(reused, marched);
     const double fewer = 1.0 - totalLookups(reused) / totalLookups(marched);
@@ -66,9 +66,9 @@ TEST_F(ConeTail, FarLitSamplesTakeTheLastTailAndKeepThePicture)
 TEST_F(ConeTail, LitSamplesNearerThanTheLimitMarchTheirOwnCones)
 {
     const ViewRequest v = builtinCumulonimbus320(*renderer);
-    const RenderResult marched = renderOk(v, quality(0.0, 15000.0));
+    const RenderResult marched = renderTuned(v, testQuality(), tail(0.0, 15000.0));
     // Nothing lies beyond 1000 km: no tail is taken, and the picture is the same to the bit.
-    const RenderResult limited = renderOk(v, quality(400.0, 1.0e6));
+    const RenderResult limited = renderTuned(v, testQuality(), tail(400.0, 1.0e6));
     EXPECT_EQ(limited.cloudRgbaHalf, marched.cloudRgbaHalf);
     EXPECT_EQ(limited.marchRowLookups, marched.marchRowLookups);
 }
@@ -79,8 +79,8 @@ TEST_F(ConeTail, DeepLitSamplesTakeTheLastConesLight)
 {
     setWeather(*renderer, deckBelowWeather());
     const ViewRequest v = deckFromAboveView();
-    const RenderResult marched = renderOk(v, with(&QualitySettings::deepLightReuseM, 0.0));
-    const RenderResult reused = renderOk(v, with(&QualitySettings::deepLightReuseM, 400.0));
+    const RenderResult marched = renderTuned(v, testQuality(), with(&RenderTuning::deepLightReuseM, 0.0));
+    const RenderResult reused = renderTuned(v, testQuality(), with(&RenderTuning::deepLightReuseM, 400.0));
     ASSERT_GT(cloudStats(marched).cloudPixels, v.width * v.height / 2);
     const double psnr = psnrCloud(reused, marched);
     const double fewer = 1.0 - totalLookups(reused) / totalLookups(marched);
@@ -97,8 +97,8 @@ TEST_F(ConeTail, DeepLitSamplesTakeTheLastConesLight)
 TEST_F(ConeTail, FarConesTakeTheirNearSamplesAsOne)
 {
     const ViewRequest v = builtinCumulonimbus320(*renderer);
-    const RenderResult separate = renderOk(v, with(&QualitySettings::coneNearMergeBeyondM, 0.0));
-    const RenderResult merged = renderOk(v, with(&QualitySettings::coneNearMergeBeyondM, 40000.0));
+    const RenderResult separate = renderTuned(v, testQuality(), with(&RenderTuning::coneNearMergeBeyondM, 0.0));
+    const RenderResult merged = renderTuned(v, testQuality(), with(&RenderTuning::coneNearMergeBeyondM, 40000.0));
     ASSERT_GT(cloudStats(separate).cloudPixels, 5000u);
     const double psnr = psnrCloud(merged, separate);
     const double fewer = 1.0 - totalLookups(merged) / totalLookups(separate);
@@ -113,7 +113,7 @@ TEST_F(ConeTail, FarConesTakeTheirNearSamplesAsOne)
     EXPECT_GT(brightness, 1.0);
     EXPECT_LT(brightness, 1.025);
     // With the limit past every cloud nothing is merged: the same bytes as two samples.
-    const RenderResult none = renderOk(v, with(&QualitySettings::coneNearMergeBeyondM, 1.0e6));
+    const RenderResult none = renderTuned(v, testQuality(), with(&RenderTuning::coneNearMergeBeyondM, 1.0e6));
     EXPECT_EQ(none.cloudRgbaHalf, separate.cloudRgbaHalf);
     EXPECT_EQ(none.marchRowLookups, separate.marchRowLookups);
 }

@@ -104,12 +104,12 @@ TEST_F(FramePath, FramesInFlightEqualFramesOneByOne)
 
     // The same march phase for both sequences (it follows the reprojected frames' count).
     dropHistory(*renderer);
-    renderer->reprojection.frameIndex = 0;
+    renderer->reconstruct.reprojection.frameIndex = 0;
     const RenderResult oneA = renderOk(a, quality);
     const RenderResult oneB = renderOk(b, quality);
 
     dropHistory(*renderer);
-    renderer->reprojection.frameIndex = 0;
+    renderer->reconstruct.reprojection.frameIndex = 0;
     FrameTicket ticketA, ticketB;
     ASSERT_TRUE(submitView(*renderer, a, quality, ticketA).ok());
     ASSERT_TRUE(submitView(*renderer, b, quality, ticketB).ok());
@@ -144,21 +144,21 @@ TEST_F(FramePath, ReadsBackOnlyWhatWasAskedFor)
     EXPECT_TRUE(r.cloudRgbaHalf.empty());
     EXPECT_TRUE(r.cloudDepthM.empty());
     EXPECT_TRUE(r.linearRgbaHalf.empty());
-    EXPECT_EQ(own.cloudImage.image, VkImage(VK_NULL_HANDLE));
-    EXPECT_EQ(own.skyImage.image, VkImage(VK_NULL_HANDLE));
+    EXPECT_EQ(own.march.cloudImage.image, VkImage(VK_NULL_HANDLE));
+    EXPECT_EQ(own.composite.skyImage.image, VkImage(VK_NULL_HANDLE));
     {
         std::lock_guard<std::mutex> lock(own.memory.mutex);
         // One frame context has read back (the display, 16-byte aligned), the other nothing yet.
-        EXPECT_LE(own.memory.hostReadbackBytes, 2 * readbackBytes(own.displayImage) + 65536);
+        EXPECT_LE(own.memory.hostReadbackBytes, 2 * readbackBytes(own.composite.displayImage) + 65536);
     }
     // Asking for a layer later makes its image; the next display-only frame lets it go again.
     view.readback = kReadDisplay | kReadSky;
     ASSERT_TRUE(renderView(own, view, quality, r).ok());
-    EXPECT_NE(own.skyImage.image, VkImage(VK_NULL_HANDLE));
+    EXPECT_NE(own.composite.skyImage.image, VkImage(VK_NULL_HANDLE));
     EXPECT_EQ(r.skyRgbaHalf.size(), size_t(view.width) * view.height * 4);
     view.readback = kReadDisplay;
     ASSERT_TRUE(renderView(own, view, quality, r).ok());
-    EXPECT_EQ(own.skyImage.image, VkImage(VK_NULL_HANDLE));
+    EXPECT_EQ(own.composite.skyImage.image, VkImage(VK_NULL_HANDLE));
     EXPECT_TRUE(r.skyRgbaHalf.empty());
     EXPECT_EQ(own.ctx.validationMessages.load(), 0u);
     destroyRenderer(own);

@@ -97,9 +97,9 @@ TEST_F(LightVolume, FarCascadeMatchesTheMarchedCone)
     RenderResult marched = render(w, v, 0.0);
     RenderResult cascade = render(w, v, 160.0);
     setWeather(*renderer, w);
-    QualitySettings q = testQuality();
-    q.lightVolumeFarCascade = false;
-    RenderResult nearOnly = renderOk(v, q);
+    RenderTuning nearVolumeOnly;
+    nearVolumeOnly.lightVolumeFarCascade = false;
+    RenderResult nearOnly = renderTuned(v, testQuality(), nearVolumeOnly);
     ASSERT_GT(cloudStats(marched).opaquePixels, 2000u);
     double psnr = psnrCloud(cascade, marched);
     std::printf("light volume with its far cascade vs marched cone, deck 8-12 km away: PSNR %.2f dB "
@@ -123,7 +123,7 @@ TEST_F(LightVolume, KeptOnlyWhileItsInputsHold)
     ViewRequest b = a;
     b.pose.lonDeg += 0.025;  // ~2 km east: another corner, other texels
     auto fresh = [&](const ViewRequest& v) {
-        renderer->lightVolumeKey.valid = false;
+        renderer->lightVolume.key.valid = false;
         return renderOk(v, q);
     };
     RenderResult first = fresh(a);
@@ -147,7 +147,7 @@ TEST(LightVolumePlacement, CornerIsOnWholeTexelsAroundTheEye)
         FrameParams f{};
         f.shell = vec4(1000.0f, 3000.0f, 0.0f, 0.0f);
         f.windowOffsetM = vec4(offset, -0.5f * offset, 0.0f, 0.0f);
-        placeLightVolume(q, f);
+        placeLightVolume(q, RenderTuning{}, f);
         ASSERT_EQ(f.lightVolume.z, 160.0f);
         ASSERT_EQ(f.lightVolumeFar.z, 160.0f * LIGHT_VOLUME_FAR_SCALE) << "the far cascade: 320 m texels";
         for (const vec4& placement : {f.lightVolume, f.lightVolumeFar})
@@ -176,31 +176,31 @@ TEST(LightVolumePlacement, AbsentWhenItWouldHoldNothing)
     f.shell = vec4(1000.0f, 3000.0f, 0.0f, 0.0f);
     f.image = uvec4(1920u, 1080u, 0u, 0u);
     f.reprojection = uvec4(4u, 0u, 0u, 0u);
-    placeLightVolume(q, f);
+    placeLightVolume(q, RenderTuning{}, f);
     EXPECT_GT(f.lightVolume.z, 0.0f) << "defaults: a volume";
     FrameParams empty = f;
     empty.shell = vec4(0.0f);
-    placeLightVolume(q, empty);
+    placeLightVolume(q, RenderTuning{}, empty);
     EXPECT_EQ(empty.lightVolume.z, 0.0f) << "no volumetric cloud";
     QualitySettings allDetailed = q;
     allDetailed.fullConeSamples = allDetailed.lightSamples;
-    placeLightVolume(allDetailed, f);
+    placeLightVolume(allDetailed, RenderTuning{}, f);
     EXPECT_EQ(f.lightVolume.z, 0.0f) << "every cone sample live";
     QualitySettings off = q;
     off.lightVolumeTexelM = 0.0;
-    placeLightVolume(off, f);
+    placeLightVolume(off, RenderTuning{}, f);
     EXPECT_EQ(f.lightVolume.z, 0.0f) << "turned off";
     EXPECT_EQ(f.lightVolumeFar.z, 0.0f) << "no cascade without the volume";
-    QualitySettings noCascade = q;
+    RenderTuning noCascade;
     noCascade.lightVolumeFarCascade = false;
-    placeLightVolume(noCascade, f);
+    placeLightVolume(q, noCascade, f);
     EXPECT_GT(f.lightVolume.z, 0.0f);
     EXPECT_EQ(f.lightVolumeFar.z, 0.0f) << "cascade turned off";
     FrameParams small = f;
     small.image = uvec4(640u, 360u, 0u, 0u);
-    placeLightVolume(q, small);
+    placeLightVolume(q, RenderTuning{}, small);
     EXPECT_EQ(small.lightVolume.z, 0.0f) << "640x360 reprojected: 14 400 rays";
     small.reprojection.x = 1u;
-    placeLightVolume(q, small);
+    placeLightVolume(q, RenderTuning{}, small);
     EXPECT_GT(small.lightVolume.z, 0.0f) << "640x360 full: 230 400 rays";
 }

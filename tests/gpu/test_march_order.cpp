@@ -40,16 +40,16 @@ bool rowsHoldCloud(const RenderResult& r, uint32_t y0, uint32_t y1)
 TEST_F(MarchOrderGpu, CostliestFirstChangesNoPixelAndFollowsTheLastCount)
 {
     const ViewRequest v = builtinCumulonimbus320(*renderer);
-    QualitySettings interleaved = testQuality();
+    RenderTuning interleaved;
     interleaved.costOrderedMarch = false;
     QualitySettings costly = testQuality();
     const uint32_t rows = (180 + WORKGROUP_SIZE_2D - 1) / WORKGROUP_SIZE_2D;
 
-    RenderResult a = renderOk(v, interleaved);
+    RenderResult a = renderTuned(v, costly, interleaved);
     ASSERT_EQ(a.marchRowOrder, interleavedRowOrder(rows));
     ASSERT_EQ(a.marchRowLookups.size(), size_t(rows));
     RenderResult b = renderOk(v, costly);
-    EXPECT_EQ(b.marchRowOrder, costliestFirstRowOrder(a.marchRowLookups.data(), rows, renderer->marchDispatchRanges));
+    EXPECT_EQ(b.marchRowOrder, costliestFirstRowOrder(a.marchRowLookups.data(), rows, renderer->march.dispatchRanges));
     EXPECT_NE(b.marchRowOrder, a.marchRowOrder);
     EXPECT_EQ(a.displayRgba8, b.displayRgba8);
     EXPECT_EQ(a.cloudRgbaHalf, b.cloudRgbaHalf);
@@ -93,6 +93,6 @@ TEST_F(MarchOrderGpu, ReprojectedFramesOrderTheirOwnRows)
     EXPECT_EQ(second.marchRowOrder, interleavedRowOrder(rows));  // the last count was the full frame's
     RenderResult third = renderOk(v, reprojected);
     EXPECT_EQ(third.marchRowOrder, costliestFirstRowOrder(second.marchRowLookups.data(), rows,
-                                                          renderer->marchDispatchRanges));
+                                                          renderer->march.dispatchRanges));
     EXPECT_GT(std::accumulate(third.marchRowLookups.begin(), third.marchRowLookups.end(), 0ull), 0ull);
 }

@@ -47,7 +47,7 @@ TEST_F(Memory, LinearFrameOnlyWhileFramesAskForIt)
     for (bool reprojected : {false, true})
     {
         QualitySettings q = reprojected ? reprojectedQuality() : testQuality();
-        const uint32_t index = renderer->reprojection.frameIndex;  // the same march phase for both
+        const uint32_t index = renderer->reconstruct.reprojection.frameIndex;  // the same march phase for both
         dropHistory(*renderer);
         RenderResult with = renderOk(v, q);
         const uint64_t linearBytes = liveBytes("linear frame"), totalWith = totalBytes();
@@ -56,7 +56,7 @@ TEST_F(Memory, LinearFrameOnlyWhileFramesAskForIt)
 
         q.linearOutput = false;
         dropHistory(*renderer);
-        renderer->reprojection.frameIndex = index;
+        renderer->reconstruct.reprojection.frameIndex = index;
         RenderResult without = renderOk(v, q);
         EXPECT_EQ(liveBytes("linear frame"), 0u);
         EXPECT_EQ(totalBytes(), totalWith - linearBytes) << (reprojected ? "reprojected" : "full");
@@ -88,17 +88,17 @@ TEST_F(Memory, FreshImagesShrinkWhenTheEyeLeavesTheCloudAndHistoryStays)
     q.insideCloudBlockPx = 1;
     RenderResult inside = renderOk(v, q);
     ASSERT_EQ(inside.marchBlockPx, 1u) << inside.marchBlockReason;
-    EXPECT_EQ(renderer->freshCloudImage.extent.width, v.width);
-    EXPECT_EQ(renderer->freshCloudImage.extent.height, v.height);
+    EXPECT_EQ(renderer->reconstruct.freshCloudImage.extent.width, v.width);
+    EXPECT_EQ(renderer->reconstruct.freshCloudImage.extent.height, v.height);
     const uint64_t insideBytes = totalBytes();
 
     v.pose.altitudeM = 4000.0;
     RenderResult above = renderOk(v, q);
     ASSERT_EQ(above.marchBlockPx, 4u) << above.marchBlockReason;
     EXPECT_TRUE(lastHistoryDropReason(*renderer).empty()) << lastHistoryDropReason(*renderer);
-    EXPECT_EQ(renderer->freshCloudImage.extent.width, v.width / 4);
-    EXPECT_EQ(renderer->freshCloudImage.extent.height, v.height / 4);
-    EXPECT_EQ(renderer->freshDepthImage.extent.width, v.width / 4);
+    EXPECT_EQ(renderer->reconstruct.freshCloudImage.extent.width, v.width / 4);
+    EXPECT_EQ(renderer->reconstruct.freshCloudImage.extent.height, v.height / 4);
+    EXPECT_EQ(renderer->reconstruct.freshDepthImage.extent.width, v.width / 4);
     EXPECT_LT(totalBytes(), insideBytes);
     std::printf("64x36 reprojected: %llu bytes inside the deck, %llu above it\n", (unsigned long long)insideBytes,
                 (unsigned long long)totalBytes());

@@ -197,7 +197,7 @@ TEST_F(GpuRender, EmptySpaceSkippingDrawsTheSameClouds)
     QualitySettings skipping = testQuality();
     skipping.maxViewSteps = 512;
     skipping.accumulationFrames = 4;
-    QualitySettings everyStep = skipping;
+    RenderTuning everyStep;
     everyStep.emptySpaceSkipping = false;
     ViewRequest cb = cumulonimbusView("2026-06-21T15:00:00Z");
     ViewRequest fl350 = lookUp(kBuiltinDeckLatDeg, kBuiltinDeckLonDeg + 1.0, 10668.0, -8.0, "2026-06-21T09:30:00Z");
@@ -214,7 +214,9 @@ TEST_F(GpuRender, EmptySpaceSkippingDrawsTheSameClouds)
         v.width = 160;
         v.height = 90;
         RenderResult skipped = render(w, v, skipping);
-        RenderResult stepped = render(w, v, everyStep);
+        renderer->tuning = everyStep;
+        RenderResult stepped = render(w, v, skipping);
+        renderer->tuning = RenderTuning{};
         ImageStats a = cloudStats(skipped), b = cloudStats(stepped);
         double psnr = psnrCloud(skipped, stepped);
         std::printf("skipping against every step: %.2f dB, cloud pixels %u against %u\n", psnr, a.cloudPixels,
@@ -279,7 +281,7 @@ TEST_F(GpuRender, ClearSkyMatchesCpuAtmosphere)
 TEST_F(GpuRender, BaseNoiseMatchesCpuCompiledShaderMath)
 {
     std::vector<uint8_t> texels;
-    SkyStatus s = readbackImage(renderer->ctx, renderer->memory, renderer->baseNoise, texels);
+    SkyStatus s = readbackImage(renderer->ctx, renderer->memory, renderer->noise.base, texels);
     ASSERT_TRUE(s.ok()) << s.message;
     ASSERT_EQ(texels.size(), size_t(BASE_NOISE_SIZE) * BASE_NOISE_SIZE * BASE_NOISE_SIZE * 4);
     for (uint32_t k = 0; k < 40; ++k)

@@ -118,12 +118,12 @@ TEST_F(Reprojection, TeleportLeavesNoPixelOfTheOldView)
     ViewRequest b = a;
     b.pose.lonDeg += 50000.0 / (111000.0 * std::cos(45.0 * M_PI / 180.0));
     b.pose.headingDeg = 90.0;
-    uint32_t index = renderer->reprojection.frameIndex;
+    uint32_t index = renderer->reconstruct.reprojection.frameIndex;
     RenderResult teleported = render(b, reprojectedQuality());
     EXPECT_FALSE(lastHistoryDropReason(*renderer).empty());
     // The same frame (same march phase) after an explicit drop: identical bytes, so nothing came from A.
     dropHistory(*renderer);
-    renderer->reprojection.frameIndex = index;
+    renderer->reconstruct.reprojection.frameIndex = index;
     RenderResult reset = render(b, reprojectedQuality());
     EXPECT_EQ(teleported.cloudRgbaHalf, reset.cloudRgbaHalf);
     EXPECT_EQ(teleported.cloudDepthM, reset.cloudDepthM);
@@ -132,11 +132,11 @@ TEST_F(Reprojection, TeleportLeavesNoPixelOfTheOldView)
     // 16 frames later: the same march phase as the reset frame above.
     for (int k = 0; k < 15; ++k)
         render(b, reprojectedQuality());
-    ASSERT_EQ(renderer->reprojection.frameIndex, index + 16);
+    ASSERT_EQ(renderer->reconstruct.reprojection.frameIndex, index + 16);
     RenderResult kept = render(b, reprojectedQuality());
     EXPECT_TRUE(lastHistoryDropReason(*renderer).empty());
     dropHistory(*renderer);
-    renderer->reprojection.frameIndex = index + 16;
+    renderer->reconstruct.reprojection.frameIndex = index + 16;
     RenderResult dropped = render(b, reprojectedQuality());
     EXPECT_FALSE(lastHistoryDropReason(*renderer).empty());
     EXPECT_EQ(dropped.cloudRgbaHalf, reset.cloudRgbaHalf) << "a dropped history must not leak into the frame";
@@ -172,9 +172,9 @@ TEST_F(Reprojection, SlowPanStaysCloseToFullResolution)
     // The same last frame without history (same march phase): reprojection must be what makes it good.
     // Without history the fresh pixels are interpolated (measured 29.5 dB display, 27.7 dB when they
     // were copied as 4x4 blocks), so the margin is 2 dB, not the 3.9 dB it was.
-    uint32_t last = renderer->reprojection.frameIndex - 1;
+    uint32_t last = renderer->reconstruct.reprojection.frameIndex - 1;
     dropHistory(*renderer);
-    renderer->reprojection.frameIndex = last;
+    renderer->reconstruct.reprojection.frameIndex = last;
     RenderResult fresh = render(v, reprojectedQuality());
     double freshDisplay = psnrDisplay(fresh, full);
     std::printf("last pose without history: cloud PSNR %.1f dB, display PSNR %.1f dB\n", psnrCloud(fresh, full),
@@ -192,12 +192,12 @@ TEST_F(Reprojection, WeatherSwapAndTimeJumpDropHistory)
     for (int k = 0; k < 4; ++k)
         render(v, reprojectedQuality());
     auto expectDropped = [&](const ViewRequest& view, const char* what) {
-        uint32_t index = renderer->reprojection.frameIndex;
+        uint32_t index = renderer->reconstruct.reprojection.frameIndex;
         RenderResult after = render(view, reprojectedQuality());
         std::string why = lastHistoryDropReason(*renderer);
         EXPECT_FALSE(why.empty()) << what;
         dropHistory(*renderer);
-        renderer->reprojection.frameIndex = index;
+        renderer->reconstruct.reprojection.frameIndex = index;
         RenderResult clean = render(view, reprojectedQuality());
         EXPECT_EQ(after.cloudRgbaHalf, clean.cloudRgbaHalf) << what << ": history leaked into the frame";
         return why;

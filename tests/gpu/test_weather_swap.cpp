@@ -48,7 +48,7 @@ constexpr int kMaxFramesToSwap = 500;
 TEST_F(WeatherSwap, StagedWeatherSwapsInOffTheFramePathAndMatchesAOneShotRender)
 {
     const ViewRequest v = overhead();
-    const WindowPrefetch& p = renderer->windowPrefetch;
+    const WindowPrefetch& p = renderer->weather.prefetch;
     const WeatherSnapshot weathers[2] = {scattered(), overcast()};
     render(v);  // the suite's first frame also builds the atmosphere tables: not part of the figures
     for (int round = 0; round < 2; ++round)
@@ -135,7 +135,7 @@ TEST_F(WeatherSwap, ABadStagedWeatherKeepsTheLastGoodOne)
             EXPECT_EQ(f.displayRgba8, good.displayRgba8);
         }
         EXPECT_FALSE(weatherStagePending(*renderer));
-        EXPECT_NE(renderer->weatherStage.lastError.find(expect), std::string::npos) << renderer->weatherStage.lastError;
+        EXPECT_NE(renderer->weather.stage.lastError.find(expect), std::string::npos) << renderer->weather.stage.lastError;
         RenderResult after = render(v);
         EXPECT_EQ(after.weatherVersion, good.weatherVersion);
         EXPECT_EQ(after.displayRgba8, good.displayRgba8);
@@ -149,7 +149,7 @@ TEST_F(WeatherSwap, AFlightWithAStagedWeatherMakesNoWindowOnTheFramePath)
     // again if the eye left that cell meanwhile; the old weather's next-cell windows keep coming.
     setWeather(*renderer, isolatedCell(45.06, 7.07, 1500.0, CloudType::Cumulus, 1500.0f, 2600.0f));
     const WeatherSnapshot next = isolatedCell(45.06, 7.07, 3000.0, CloudType::Stratocumulus, 1200.0f, 2000.0f);
-    const WindowPrefetch& p = renderer->windowPrefetch;
+    const WindowPrefetch& p = renderer->weather.prefetch;
     ViewRequest v = lookUp(44.99, 7.0, 2000.0, 0.0, "2026-06-21T12:00:00Z");
     v.pose.headingDeg = 45.0;
     v.fovYDeg = 40.0;

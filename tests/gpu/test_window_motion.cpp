@@ -75,7 +75,7 @@ TEST_F(WindowMotion, CrossingACellEdgeMovesNoCloud)
 TEST_F(WindowMotion, FlightMakesItsWindowsAheadOfTheEyeAndTheFramesDoNotDependOnIt)
 {
     setWeather(*renderer, isolatedCell(45.06, 7.07, 1500.0, CloudType::Cumulus, 1500.0f, 2600.0f));
-    const WindowPrefetch& p = renderer->windowPrefetch;
+    const WindowPrefetch& p = renderer->weather.prefetch;
     const uint64_t madeBefore = p.madeOnFrame, usedBefore = p.used;
     // North at 300 m per frame (250 m/s at ~1 frame per 1.2 s; the window logic only sees the motion per
     // frame) for 30 frames: 9 km, four cell edges.

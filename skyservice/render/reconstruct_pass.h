@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+// The reconstruct pass of temporal reprojection (shaders/clouds/reconstruct.comp.glsl; the CPU side's
+// decisions are in reprojection.h): its program, the pixels the march wrote at block resolution, the
+// packed history of the last two frames, and what the renderer remembers of the last reprojected frame.
+#pragma once
+
+#include "skyservice/render/frame_context.h"
+#include "skyservice/render/reprojection.h"
+#include "skyservice/vk/programs.h"
+
+namespace sky
+{
+
+struct Renderer;
+
+struct ReconstructPass
+{
+    Program program;
+    /// This frame's marched pixels, one per block, at the size of the block in use (frame_images.h).
+    Image freshCloudImage, freshDepthImage;
+    /// The reconstructed cloud radiance, alpha and depth of the last two frames (ping-pong), packed in one
+    /// 64-bit texel (shaders/lib/cloud_history.glsl); made on the first reprojected frame.
+    Image history[2];
+    ReprojectionHistory reprojection;  ///< which history image holds which frame, and whether it is usable
+};
+
+/// Loads the program (the images are made on the first reprojected frame).
+SkyStatus createReconstructPass(const Context& ctx, ReconstructPass& pass);
+void destroyReconstructPass(const Context& ctx, MemoryTracker& memory, ReconstructPass& pass);
+
+/// Records the reconstruct pass of a width x height frame: the fresh pixels and
+/// history[reprojection.current] into history[reprojection.current ^ 1], then a barrier.
+void recordReconstruct(Renderer& r, const FrameContext& frame, VkCommandBuffer cmd, uint32_t width, uint32_t height);
+
+}  // namespace sky

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: MIT
+// The renderer's experiment knobs: distances and switches that trade a little of the picture for speed,
+// kept settable so that sky-bench and the tests can measure both sides of each trade (BENCHMARKS.md).
+// The product does not expose them: QualitySettings and the TOML config hold what a user or a quality
+// preset sets; these stay at the defaults below unless a benchmark or a test changes Renderer::tuning.
+#pragma once
+
+namespace sky
+{
+
+struct RenderTuning
+{
+    /// Beyond this distance (m) the light cone takes 3 cheap samples over the same length (0: never).
+    double lightLodDistanceM = 0.0;
+    /// Where no light volume reaches, a lit sample within this distance (m) of the last cone that marched
+    /// its far (cheap) samples takes those instead of marching its own; its near, detailed samples stay
+    /// its own (0: every cone marched in full). The next lit sample in a cloud is tens of metres away, the
+    /// far samples 300 m-4.4 km. H200, 1080p reprojected: -21..-28 % in the volumetric scenes at 400 m;
+    /// the 320x180 contact sheet of the bench scenes 52.5 dB of 0 (the Cb tower 47 dB). BENCHMARKS.md;
+    /// tests/gpu/test_cone_tail.cpp.
+    double coneTailReuseM = 400.0;
+    /// ...and only lit samples farther than this from the eye (m) do: nearer, the reused tails of points
+    /// nearer the cloud's surface brighten the cloud (a sunset deck 1.6/255 on average at 200 m, light
+    /// volume off). 15 km is about where the light volume's far cascade ends.
+    double coneTailReuseBeyondM = 15000.0;
+    /// Deep lit samples (behind a view transmittance below QualitySettings::detailMinTransmittance) within
+    /// this distance (m) of the last cone marched take its light and march none (0: each marches its own).
+    /// What they add reaches the eye through less than a tenth. H200, 1080p: inside-cloud -10 %
+    /// reprojected, -13 % full, the deck -6 % full; the 320x180 contact sheet 59.9 dB of 0 (BENCHMARKS.md).
+    double deepLightReuseM = 400.0;
+    /// Beyond this distance (m) a light cone's detailed near samples (QualitySettings::fullConeSamples) are
+    /// taken as one sample over their length (0: never): there the detail erosion has faded out
+    /// (detailFadeEndM) and a pixel spans tens of metres. One density lookup fewer per far lit sample, and
+    /// the frame's costliest rays are far ones (H200, 1080p reprojected: sunset -10 %, FL350 -7 %). The
+    /// single sample sees less of a cloud's thin sunlit skin, so the clouds it lights come out brighter
+    /// (+1.2 % in the test); a nearer limit changes more of the picture (the 320x180 contact sheet of the
+    /// bench scenes against 0: 46.2 dB at 25 km, 51.4 dB at 40 km; FL350's deck 39.3 / 43.9 dB).
+    /// BENCHMARKS.md; tests/gpu/test_cone_tail.cpp.
+    double coneNearMergeBeyondM = 40000.0;
+    double detailFadeStartM = 8000.0;  ///< detail erosion fades out from here...
+    double detailFadeEndM = 25000.0;   ///< ...to here (beyond, its noise is finer than a pixel)
+    /// With the light volume, also its far cascade of 2x wider texels (15.4 km around the eye): lit
+    /// samples beyond the volume read it instead of marching the whole cone (shaders/shared/light_volume.h).
+    bool lightVolumeFarCascade = true;
+    /// The march's search jumps over stretches that the weather's column bounds show empty
+    /// (shaders/shared/column_bounds.h); false samples every search step (tests, A/B).
+    bool emptySpaceSkipping = true;
+    /// The march launches its workgroup rows costliest first, by the lookups the previous frame of the
+    /// same shape counted (shaders/shared/march_order.h); false: always the interleaved order (A/B). It
+    /// changes no pixel. H200, 1080p: see BENCHMARKS.md.
+    bool costOrderedMarch = true;
+
+    bool operator==(const RenderTuning&) const = default;
+};
+
+}  // namespace sky
