@@ -124,6 +124,9 @@ struct ViewRequest
     uint32_t width = 640;
     uint32_t height = 360;
     int64_t unixTimeS = 0;           ///< UTC time of the view (s since 1970)
+    /// The part of a second after unixTimeS, [0, 1): the clouds' wind drift moves with it (a service frame
+    /// at 60 Hz is not drawn where its second began); the sun and moon use whole seconds.
+    double unixTimeFractionS = 0.0;
     /// Meteorological visibility near the ground (m): sets the haze (skyservice/sky/atmosphere.h
     /// setHazeVisibility); 0 = the clear atmosphere's own (~170 km).
     double visibilityM = 0.0;

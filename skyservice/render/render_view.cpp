@@ -115,7 +115,8 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
     in.request = &request;
     in.quality = &quality;
     in.tuning = &r.tuning;
-    in.animationTimeS = double(request.unixTimeS - r.weather.snapshot->validTimeUnixS);
+    in.animationTimeS = double(request.unixTimeS - r.weather.snapshot->validTimeUnixS) +
+                        std::clamp(request.unixTimeFractionS, 0.0, 1.0);
     {
         // The drift frame is anchored at the weather grid's centre: the same on every machine and for
         // every eye position (multi-channel seams, no sliding when flying).

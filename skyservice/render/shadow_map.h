@@ -92,9 +92,10 @@ nlohmann::json shadowMapMetadata(const ShadowMapGeometry& geometry, const SunMoo
 
 /// What the map in ShadowMapPass's images was drawn for, and what was published with it. A later frame
 /// reuses it (no dispatch, the same metadata and id) while a new drawing would not differ: the same size,
-/// extent, quality, weather and window, the same animation second, the key light's shadows moved less
+/// extent, quality, weather and window, the same second (the clouds drift with the wind within it: a map is
+/// at most a second behind them), the key light's shadows moved less
 /// than half a texel, and the eye (the map's centre) moved less than 1/64 of the extent. The map is
-/// geo-referenced by its own centre, so a reused map is exact where it lies.
+/// geo-referenced by its own centre, so a reused map is exact where it lies (within the second).
 struct ShadowMapDrawing
 {
     bool valid = false;
@@ -105,7 +106,7 @@ struct ShadowMapDrawing
     RenderTuning tuning;
     uint64_t weatherVersion = 0;
     const void* window = nullptr;     ///< the weather window drawn from (Renderer::window)
-    int64_t unixTimeS = 0;            ///< the view's time (the wind drift steps once per second)
+    int64_t unixTimeS = 0;            ///< the view's whole second: a map is at most a second behind the wind
     glm::dvec3 eyeEcefM{0.0};
     glm::dvec3 lightEnu{0.0};
     bool lightIsMoon = false;

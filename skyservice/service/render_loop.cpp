@@ -226,6 +226,7 @@ void RenderLoop::Impl::startFrame(uint64_t id, ViewRequest request, const SimClo
     frame.start = SteadyClock::now();
     frame.id = id;
     request.unixTimeS = int64_t(std::floor(simTimeS));
+    request.unixTimeFractionS = simTimeS - std::floor(simTimeS);
     weatherSchedule.beforeFrame(r, weather, clock, simTimeS);  // a new weather is prepared off this thread
     // What this frame reads back: the layers shm subscribers asked for; everything files need when this
     // frame writes files (the linear frame, 16.6 MB at 1080p, only for EXR files).

@@ -111,6 +111,33 @@ TEST_F(GpuRender, SameInputsGiveSameBytes)
     EXPECT_EQ(a.cloudDepthM, b.cloudDepthM);
 }
 
+// The clouds drift with the wind within a second (ViewRequest::unixTimeFractionS): 0.9 s into a second
+// with a 5 m/s wind they lie 4.5 m on, nearly where the next whole second puts them (5 m), not where the
+// second began. Without the fraction the frame 0.9 s in equals the one at the second's start.
+TEST_F(GpuRender, CloudsDriftWithinASecond)
+{
+    const WeatherSnapshot w = uniformLayer(0.3f, CloudType::Cumulus, 1200.0f, 3000.0f);
+    ViewRequest v = lookUp(45.0, 7.0, 200.0, 40.0, "2026-06-21T12:00:00Z");
+    const RenderResult start = render(w, v);
+    v.unixTimeFractionS = 0.9;
+    const RenderResult late = render(w, v);
+    v.unixTimeFractionS = 0.0;
+    v.unixTimeS += 1;
+    const RenderResult next = render(w, v);
+    auto meanDifference = [](const RenderResult& a, const RenderResult& b) {
+        double sum = 0;
+        for (size_t i = 0; i < a.displayRgba8.size(); ++i)
+            sum += std::abs(int(a.displayRgba8[i]) - int(b.displayRgba8[i]));
+        return sum / double(a.displayRgba8.size());
+    };
+    ASSERT_EQ(start.displayRgba8.size(), next.displayRgba8.size());
+    const double startToNext = meanDifference(start, next), lateToNext = meanDifference(late, next);
+    std::printf("  mean |difference| to the next second: from its start %.3f, from 0.9 s in %.3f\n", startToNext,
+                lateToNext);
+    EXPECT_GT(startToNext, 0.0) << "the clouds drift with the wind";
+    EXPECT_LT(lateToNext, 0.5 * startToNext);
+}
+
 // One cumulus cell 12 km east of the eye, seen at the same low sun elevation from its sunlit side
 // (afternoon, sun behind the eye) and from its shadow side (morning, sun behind the cloud).
 TEST_F(GpuRender, SunSideOfACumulusIsBrighterThanItsShadowSide)
