@@ -1,0 +1,9 @@
+# The reference path tracer (issue 22, reference.*): its sampling compiled as C++ (CPU), and on the GPU the
+# plane-parallel slab against the published transfer, energy conservation, the built-in clouds.
+add_executable(test_reference_sampling unit/test_phase_sampling.cpp)
+target_link_libraries(test_reference_sampling PRIVATE sky_renderer GTest::gtest_main sky_warnings)
+gtest_discover_tests(test_reference_sampling TEST_PREFIX "reference." DISCOVERY_TIMEOUT 30 PROPERTIES LABELS cpu)
+
+add_executable(test_reference gpu/test_reference.cpp gpu/scenes.cpp)
+target_link_libraries(test_reference PRIVATE sky_renderer GTest::gtest_main sky_warnings)
+gtest_discover_tests(test_reference TEST_PREFIX "reference." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
