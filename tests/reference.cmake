@@ -7,3 +7,8 @@ gtest_discover_tests(test_reference_sampling TEST_PREFIX "reference." DISCOVERY_
 add_executable(test_reference gpu/test_reference.cpp gpu/scenes.cpp)
 target_link_libraries(test_reference PRIVATE sky_renderer GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_reference TEST_PREFIX "reference." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+
+# sky-reference-looks (not a test: minutes on lavapipe): the issue's look views in real time and path
+# traced, side by side in OUT/reference-looks.png, with their cloud luminance statistics.
+add_executable(sky-reference-looks gpu/reference_looks.cpp gpu/scenes.cpp)
+target_link_libraries(sky-reference-looks PRIVATE sky_renderer sky_warnings)

@@ -44,33 +44,35 @@ Medium mediumAt(vec3 p)
     return Medium(s.density * frame.cloudLook.x * (1.0f + rain), 1.0f / (1.0f + rain));
 }
 
-// The lowest and highest altitude (m) on the stretch [t0, t1] of the ray (o, d): convex in t, so at an end
-// or at the point nearest the earth's centre.
-vec2 stretchAltitudes(vec3 o, vec3 d, float t0, float t1)
-{
-    float h0 = altitudeAt(o + d * t0);
-    float h1 = altitudeAt(o + d * t1);
-    vec2 range = vec2(min(h0, h1), max(h0, h1));
-    float tNearest = -dot(o + vec3(0.0f, 0.0f, frame.earth.y), d);
-    if (tNearest > t0 && tNearest < t1)
-        range.x = min(range.x, altitudeAt(o + d * tNearest));
-    return range;
-}
-
-// An upper bound of the extinction (1/m) on the stretch: the bounds of the layers whose altitude ranges
-// it reaches, summed (cloudDensity sums the layers a point lies in).
+// An upper bound of the extinction (1/m) on the stretch [t0, t1] of the ray (o, d): the layer bounds
+// (layerBounds, shaders/shared/reference_params.h) of the columns it crosses, summed over the layers whose
+// altitude ranges it reaches (cloudDensity sums the layers a point lies in).
 float majorantOn(vec3 o, vec3 d, float t0, float t1)
 {
     if (referenceFlag(REFERENCE_FLAG_SLAB))
         return ref.slab.z;
-    vec2 h = stretchAltitudes(o, d, t0, t1);
+    float h0;
+    float h1;
+    vec2 m0 = weatherMapPosition(o + d * t0, h0);
+    vec2 m1 = weatherMapPosition(o + d * t1, h1);
+    // The altitude along a straight line is convex in t: lowest at an end or at the point nearest the
+    // earth's centre.
+    vec2 h = vec2(min(h0, h1), max(h0, h1));
+    float tNearest = -dot(o + vec3(0.0f, 0.0f, frame.earth.y), d);
+    if (tNearest > t0 && tNearest < t1)
+        h.x = min(h.x, altitudeAt(o + d * tNearest));
+    ivec2 i0;
+    ivec2 i1;
+    columnBoundsCover(m0, m1, i0, i1);
+    vec4 columns = max(max(texelFetch(layerBounds, i0, 0), texelFetch(layerBounds, ivec2(i1.x, i0.y), 0)),
+                       max(texelFetch(layerBounds, ivec2(i0.x, i1.y), 0), texelFetch(layerBounds, i1, 0)));
     float bound = 0.0f;
     for (int k = 0; k <= MAX_CLOUD_LAYERS; ++k)
     {
         vec4 range = frame.layerRangeM[k];
         if (h.y < range.x || h.x > range.y)
             continue;
-        bound += k == MAX_CLOUD_LAYERS ? ref.phase.w : ref.layerBound[k];
+        bound += k == MAX_CLOUD_LAYERS ? ref.phase.w : columns[k];
     }
     return bound * frame.cloudLook.x;
 }

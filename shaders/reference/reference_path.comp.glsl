@@ -61,6 +61,8 @@ layout(binding = 13, std430) buffer StatsBlock
     uint pixelsUnfinished;
 } stats;
 layout(binding = 14, std430) buffer PathBlock { ReferencePathState paths[]; };
+// The layer bounds of the window's columns (shaders/shared/reference_params.h): the tracking's majorants.
+layout(binding = 15) uniform sampler2D layerBounds;
 
 #include "shaders/lib/atmosphere_sampling.glsl"
 #include "shaders/clouds/cloud_density.glsl"
@@ -306,7 +308,8 @@ LayerSum inFrontOf(LayerSum front, LayerSum back)
                     front.depthWeight + front.transmittance * back.depthWeight);
 }
 
-// Loop iterations a density lookup takes (cloudDensity's loop over the layers), counted against the budget.
+// Loop iterations a density lookup takes (cloudDensity's loop over the layers), counted against the budget;
+// a stretch's majorant takes as many.
 const uint DENSITY_ITERATIONS = uint(MAX_CLOUD_LAYERS) + 1u;
 
 void main()
@@ -349,6 +352,7 @@ void main()
         vec3 rayD = shadow ? p.l : p.d;
         if (p.k.majorant <= 0.0f)
         {
+            iterations += DENSITY_ITERATIONS;
             if (stretchStep(p.o, rayD, p.k) == STRETCH_NONE)
                 iterations += escape(p, sums);
             continue;

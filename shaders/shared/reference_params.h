@@ -33,6 +33,12 @@
 #define REFERENCE_MODE_GROUND_SHADOW 3u // ratio tracking toward the light from the ground
 #define REFERENCE_MODE_IDLE 4u          // all of the pixel's samples are done
 
+// The layer-bounds atlas (reference_renderer.cpp buildLayerBounds), RGBA32F in the layout of the column
+// bounds (shaders/shared/column_bounds.h, same levels and texels): channel k of a level-0 texel is an upper
+// bound of layer k's relative density times (1 + rain absorption) at any point whose weather lookups read
+// that texel (0 where the layer has no coverage in its 3x3 neighbourhood); a coarser texel holds the
+// maxima of its 2x2. Times frame.cloudLook.x, summed over the layers a stretch of ray can reach, it is the
+// majorant of the tracking there.
 struct ReferencePush
 {
     // x: index of this dispatch (0: the paths start); y: samples per pixel; z: loop iterations per
@@ -44,9 +50,6 @@ struct ReferencePush
     vec4 phase;
     // x: scattering events per path at most (the path ends there: the bias of a truncated series); yzw unused
     uvec4 limits;
-    // Per volumetric layer 0..3: an upper bound of its relative density times (1 + rain absorption) over
-    // the window; times frame.cloudLook.x it is the majorant of the delta and ratio tracking.
-    vec4 layerBound;
     // REFERENCE_FLAG_SLAB: x base (m), y top (m), z extinction (1/m), w single-scattering albedo
     vec4 slab;
     // REFERENCE_FLAG_UNIT_LIGHT: xyz unit direction to the light (eye ENU); w unused

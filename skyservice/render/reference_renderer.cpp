@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/reference_renderer.h"
 
+#include "shaders/shared/column_bounds.h"
 #include "shaders/shared/reference_params.h"
 #include "skyservice/render/atmosphere_passes.h"
+#include "skyservice/render/column_bounds.h"
 #include "skyservice/render/frame_recording.h"
 
 #include <algorithm>
@@ -14,7 +16,7 @@ namespace sky
 namespace
 {
 
-static_assert(sizeof(ReferencePush) == 96, "shaders/shared/reference_params.h: ReferencePush is 6 vec4");
+static_assert(sizeof(ReferencePush) == 80, "shaders/shared/reference_params.h: ReferencePush is 5 vec4");
 static_assert(sizeof(ReferencePathState) == 128, "shaders/shared/reference_params.h: 8 vec4, std430");
 
 /// A path that has not finished after this many dispatches is taken for a fault (a pixel's samples take
@@ -81,9 +83,9 @@ ReferencePush makePush(const Renderer& r, const ReferenceSettings& s)
         flags |= REFERENCE_FLAG_HEMISPHERE | (s.hemisphere < 0 ? REFERENCE_FLAG_HEMISPHERE_DOWN : 0u);
     p.control = uvec4(0u, s.samplesPerPixel, std::min(s.iterationsPerDispatch, 65000u), flags);
     p.limits = uvec4(std::max(1u, s.maxEvents), 0u, 0u, 0u);
-    float anvilBound = 0.0f;
-    p.layerBound = r.window ? layerExtinctionBounds(r.window->window, anvilBound) : vec4(0.0f);
-    p.phase = vec4(float(uint32_t(s.phase)), float(s.dropletDiameterUm), float(s.seed), anvilBound);
+    (void)r;
+    // The anvil slab: the cumulonimbus genus times its 0.8 in cloudDensity, no rain.
+    p.phase = vec4(float(uint32_t(s.phase)), float(s.dropletDiameterUm), float(s.seed), 1.2f * 0.8f);
     p.slab = vec4(float(s.slab.baseM), float(s.slab.topM), float(s.slab.extinctionPerM), float(s.slab.albedo));
     const glm::dvec3 l = glm::normalize(s.unitLightDirectionEnu);
     p.testLight = vec4(float(l.x), float(l.y), float(l.z), 0.0f);
@@ -102,27 +104,85 @@ SkyStatus readInto(Renderer& r, const Image& image, std::vector<T>& out)
 
 }  // namespace
 
-glm::vec4 layerExtinctionBounds(const WeatherWindow& window, float& anvilBound)
+static std::vector<glm::vec4> buildLayerBounds(const WeatherWindow& window)
 {
-    glm::vec4 bounds(0.0f);
     const uint32_t n = window.sizeTexels;
-    for (uint32_t k = 0; k < MAX_CLOUD_LAYERS; ++k)
-    {
-        // Every texel counts, with or without coverage: a point's genus is its nearest texel's while its
-        // coverage is interpolated from the neighbours.
-        float genus = 0.0f;
-        float rain = 0.0f;
-        for (uint32_t j = 0; j < n; ++j)
-            for (uint32_t i = 0; i < n; ++i)
+    const uint32_t width = columnBoundsWidth(n);
+    std::vector<glm::vec4> atlas(size_t(width) * n, glm::vec4(0.0f));
+    // Per texel and layer: the genus bound and the rain factor (rainAbsorptionFactor in
+    // shaders/lib/cloud_shape.glsl at the base, where it is largest), where the layer has coverage.
+    std::vector<glm::vec4> own(size_t(n) * n, glm::vec4(0.0f));
+    std::vector<glm::bvec4> covered(size_t(n) * n, glm::bvec4(false));
+    for (uint32_t j = 0; j < n; ++j)
+        for (uint32_t i = 0; i < n; ++i)
+            for (uint32_t k = 0; k < MAX_CLOUD_LAYERS; ++k)
             {
-                genus = std::max(genus, genusDensityBound(int(window.at(2 * k, i, j).w + 0.5f)));
-                rain = std::max(rain, window.at(2 * k + 1, i, j).z);
+                const glm::vec4& layer = window.at(2 * k, i, j);
+                const float rain = std::clamp(window.at(2 * k + 1, i, j).z / 20.0f, 0.0f, 1.0f) * 1.5f;
+                own[size_t(j) * n + i][int(k)] = genusDensityBound(int(layer.w + 0.5f)) * (1.0f + rain);
+                covered[size_t(j) * n + i][int(k)] = layer.x >= CLOUD_COVERAGE_MIN;
             }
-        // rainAbsorptionFactor (shaders/lib/cloud_shape.glsl) at the base, where it is largest.
-        bounds[int(k)] = genus * (1.0f + std::clamp(rain / 20.0f, 0.0f, 1.0f) * 1.5f);
+    // Level 0: a point in texel c's cell interpolates the coverage and rain of c's 3x3 neighbourhood (as
+    // the column bounds count it) and takes its genus from a texel there.
+    for (uint32_t j = 0; j < n; ++j)
+        for (uint32_t i = 0; i < n; ++i)
+        {
+            glm::vec4 bound(0.0f);
+            glm::bvec4 any(false);
+            for (uint32_t jj = j > 0 ? j - 1 : 0; jj <= std::min(j + 1, n - 1); ++jj)
+                for (uint32_t ii = i > 0 ? i - 1 : 0; ii <= std::min(i + 1, n - 1); ++ii)
+                {
+                    bound = glm::max(bound, own[size_t(jj) * n + ii]);
+                    any = glm::bvec4(any.x || covered[size_t(jj) * n + ii].x, any.y || covered[size_t(jj) * n + ii].y,
+                                     any.z || covered[size_t(jj) * n + ii].z, any.w || covered[size_t(jj) * n + ii].w);
+                }
+            atlas[size_t(j) * width + i] = glm::vec4(any.x ? bound.x : 0.0f, any.y ? bound.y : 0.0f,
+                                                     any.z ? bound.z : 0.0f, any.w ? bound.w : 0.0f);
+        }
+    // Coarser levels: the maxima of 2x2 texels of the level below.
+    for (int level = 1; level < COLUMN_BOUNDS_LEVELS && (n >> level) > 0; ++level)
+    {
+        const ivec2 below = columnBoundsLevelOrigin(level - 1, int(n));
+        const ivec2 here = columnBoundsLevelOrigin(level, int(n));
+        const uint32_t side = n >> level;
+        for (uint32_t j = 0; j < side; ++j)
+            for (uint32_t i = 0; i < side; ++i)
+            {
+                glm::vec4 m(0.0f);
+                for (uint32_t q = 0; q < 4; ++q)
+                {
+                    const size_t x = size_t(below.x) + 2 * i + (q & 1);
+                    const size_t y = size_t(below.y) + 2 * j + (q >> 1);
+                    m = glm::max(m, atlas[y * width + x]);
+                }
+                atlas[(size_t(here.y) + j) * width + size_t(here.x) + i] = m;
+            }
     }
-    anvilBound = 1.2f * 0.8f;  // the anvil slab: the cumulonimbus genus times its 0.8, no rain
-    return bounds;
+    return atlas;
+}
+
+static SkyStatus uploadLayerBounds(Renderer& r, ReferenceRenderer& ref)
+{
+    if (!r.window)
+        return SkyStatus::failure("reference: no weather window", VK_ERROR_INITIALIZATION_FAILED);
+    const std::vector<glm::vec4> atlas = buildLayerBounds(r.window->window);
+    const uint32_t n = r.window->window.sizeTexels;
+    if (!ref.layerBounds.image || ref.layerBounds.extent.height != n)
+    {
+        destroyImage(r.ctx, r.memory, ref.layerBounds);
+        ImageDesc d;
+        d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+        d.width = columnBoundsWidth(n);
+        d.height = n;
+        d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+        SKY_TRY(createImage(r.ctx, r.memory, ref.layerBounds, d, "reference layer bounds"));
+        OneShot shot;
+        SKY_TRY(beginOneShot(r.ctx, shot));
+        transitionImage(shot.cmd, ref.layerBounds, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+        SKY_TRY(endOneShot(r.ctx, shot));
+    }
+    return uploadImage(r.ctx, r.memory, ref.layerBounds, atlas.data(), atlas.size() * sizeof(glm::vec4),
+                       VK_IMAGE_LAYOUT_GENERAL);
 }
 
 SkyStatus createReferenceRenderer(Renderer& r, ReferenceRenderer& ref)
@@ -138,6 +198,7 @@ void destroyReferenceRenderer(Renderer& r, ReferenceRenderer& ref)
         vkDeviceWaitIdle(r.ctx.device);
     destroyImage(r.ctx, r.memory, ref.radianceSum);
     destroyImage(r.ctx, r.memory, ref.depthSum);
+    destroyImage(r.ctx, r.memory, ref.layerBounds);
     destroyBuffer(r.ctx, r.memory, ref.paths);
     destroyBuffer(r.ctx, r.memory, ref.stats);
     destroyProgram(r.ctx, ref.pathProgram);
@@ -160,6 +221,7 @@ SkyStatus renderReference(Renderer& r, ReferenceRenderer& ref, const ViewRequest
     q.accumulationFrames = 1;
     SKY_TRY(renderView(r, request, q, result));
     SKY_TRY(ensureSums(r, ref, request.width, request.height));
+    SKY_TRY(uploadLayerBounds(r, ref));
     std::memset(ref.stats.mapped, 0, kStatsBytes);
 
     const FrameContext& frame = recording(r);
@@ -183,7 +245,8 @@ SkyStatus renderReference(Renderer& r, ReferenceRenderer& ref, const ViewRequest
                   DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.skyViewLut, r.linearRepeat),
                   DescriptorInfo(r.columnBoundsImage, r.nearestRepeat), DescriptorInfo(ref.radianceSum),
                   DescriptorInfo(ref.depthSum), DescriptorInfo(r.cloudImage), DescriptorInfo(r.depthImage),
-                  DescriptorInfo(ref.stats), DescriptorInfo(ref.paths)});
+                  DescriptorInfo(ref.stats), DescriptorInfo(ref.paths),
+                  DescriptorInfo(ref.layerBounds, r.nearestRepeat)});
         SKY_TRY(endOneShot(r.ctx, shot));
         ref.last.dispatches = k + 1;
         if (counters[2] == 0)

@@ -72,6 +72,7 @@ struct ReferenceRenderer
     Program pathProgram;
     Image radianceSum, depthSum;  ///< running sums, RGBA32F and R32F at the view's size
     Buffer paths;                 ///< a ReferencePathState per pixel (shaders/shared/reference_params.h)
+    Image layerBounds;            ///< the window's layer bounds: the tracking's majorants (reference_params.h)
     Buffer stats;                 ///< the shader's three counters, host-visible
     ReferenceStats last;
 };
@@ -85,10 +86,5 @@ void destroyReferenceRenderer(Renderer& r, ReferenceRenderer& ref);
 /// rendered at full resolution, without reprojection or accumulation.
 SkyStatus renderReference(Renderer& r, ReferenceRenderer& ref, const ViewRequest& request,
                           const QualitySettings& quality, const ReferenceSettings& settings, RenderResult& result);
-
-/// Upper bounds of the relative extinction of each volumetric layer of `window` (the density's genus and
-/// tower factors times 1 + the rain absorption, shaders/clouds/cloud_density.glsl), and of the anvil slab
-/// (w): the majorants of the tracking are these times the extinction per metre.
-glm::vec4 layerExtinctionBounds(const WeatherWindow& window, float& anvilBound);
 
 }  // namespace sky
