@@ -74,6 +74,15 @@ CLI::App* addRenderCommand(CLI::App& app, RenderCommandOptions& render)
     cmd->add_option("--out", render.out, "Output prefix: writes PREFIX.png, PREFIX.exr, PREFIX.json");
     cmd->add_flag("--no-detail", render.noDetail, "Skip detail erosion");
     cmd->add_flag("--no-high-cloud", render.noHighCloud, "Skip the cirrus layer");
+    cmd->add_flag("--reference", render.reference,
+                  "Path-trace the clouds (every order of scattering) instead of the real-time march");
+    cmd->add_option("--spp", render.referenceSpp, "--reference: samples per pixel (default 64)")
+        ->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--phase", render.referencePhase,
+                    "--reference: phase function: model (the two-lobe HG) or mie (HG + Draine, Jendersie & d'Eon)")
+        ->check(CLI::IsMember({"model", "mie"}));
+    cmd->add_option("--droplet-um", render.dropletDiameterUm, "--reference --phase mie: droplet diameter (um)")
+        ->check(CLI::Range(1.5, 50.0));
     addShadowMapOptions(*cmd, v);
     return cmd;
 }

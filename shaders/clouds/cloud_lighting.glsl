@@ -1,19 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Lighting of cloud samples and the view march. Included by cloud passes after cloud_density.glsl.
 
-vec3 keyLightIrradiance()
-{
-    return moonIsKeyLight() ? frame.moonIrradiance.rgb : frame.sunIrradiance.rgb;
-}
-
-// Key light arriving at `p` through the atmosphere (transmittance LUT at the point's radius).
-vec3 keyLightAt(vec3 p, vec3 lightDir)
-{
-    vec3 pc = p + vec3(0.0f, 0.0f, frame.earth.y);
-    float r = length(pc);
-    float muLight = dot(pc, lightDir) / r;
-    return keyLightIrradiance() * sampleTransmittance(transmittanceLut, atmosphere, r, muLight);
-}
+#include "shaders/clouds/key_light.glsl"
 
 // The light cone of one lit view sample: optical depth toward the light from 6 samples in a widening
 // cone, then one long sample at 3x the cone length (Schneider 2015); cheap density once the path is
@@ -373,7 +361,7 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             afterEmpty = false;
             litSigmaS = ds.density * frame.cloudLook.x;
             // Rain makes bases dark: precipitation adds absorption near the base (docs/model.md).
-            float rainAbsorption = saturate1(ds.rainMmH / 20.0f) * (1.0f - ds.heightFraction) * 1.5f;
+            float rainAbsorption = rainAbsorptionFactor(ds.rainMmH, ds.heightFraction);
             litSigmaE = litSigmaS * (1.0f + rainAbsorption);
             litHeightFraction = ds.heightFraction;
             // Inside a cloud a step covers at most frame.detailLod.z of optical depth at this sample's

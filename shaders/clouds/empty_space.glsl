@@ -9,27 +9,13 @@ vec2 columnBoundsTexelPosition(vec2 mapPosM)
     return uv * float(WEATHER_WINDOW_SIZE);
 }
 
-// True when the view ray `dir` holds no cloud between t0 and t1 (m from the eye): its altitudes there lie
-// above the highest top or below the lowest base of every column the stretch crosses. False when unsure.
-bool noCloudBetween(vec3 dir, float t0, float t1)
+// The 2x2 texels (atlas coordinates i0, i1 of shaders/shared/column_bounds.h) of the coarsest pyramid level
+// needed whose block covers every map position of a stretch of ray from map position m0 to m1.
+void columnBoundsCover(vec2 m0, vec2 m1, out ivec2 i0, out ivec2 i1)
 {
-    float h0;
-    float h1;
-    vec2 m0 = weatherMapPosition(dir * t0, h0);
-    vec2 m1 = weatherMapPosition(dir * t1, h1);
-    // The altitude along a straight line is convex in t: highest at an end, lowest at an end or at the
-    // point nearest the earth's centre.
-    float hHigh = max(h0, h1);
-    float hLow = min(h0, h1);
-    float tNearest = -frame.earth.y * dir.z;
-    if (tNearest > t0 && tNearest < t1)
-    {
-        float hNearest;
-        weatherMapPosition(dir * tNearest, hNearest);
-        hLow = min(hLow, hNearest);
-    }
-    // A ray's map positions lie on a straight line from the eye (the projection is azimuthal equidistant
-    // about it); the window's radial warp bends that line a little, so: the texel box of both ends and
+    // A view ray's map positions lie on a straight line from the eye (the projection is azimuthal
+    // equidistant about it); the window's radial warp bends that line a little, and a ray from elsewhere
+    // (the reference path tracer's) bends more over a short stretch, so: the texel box of both ends and
     // the middle, grown by an eighth of its size and a texel.
     vec2 a = columnBoundsTexelPosition(m0);
     vec2 b = columnBoundsTexelPosition(m1);
@@ -46,8 +32,33 @@ bool noCloudBetween(vec3 dir, float t0, float t1)
     int side = WEATHER_WINDOW_SIZE >> level;
     ivec2 first = ivec2(floor(lo / float(1 << level)));
     ivec2 origin = columnBoundsLevelOrigin(level, WEATHER_WINDOW_SIZE);
-    ivec2 i0 = origin + clamp(first, ivec2(0), ivec2(side - 1));
-    ivec2 i1 = origin + clamp(first + 1, ivec2(0), ivec2(side - 1));
+    i0 = origin + clamp(first, ivec2(0), ivec2(side - 1));
+    i1 = origin + clamp(first + 1, ivec2(0), ivec2(side - 1));
+}
+
+// True when the ray from `rayOrigin` (eye ENU, m) along the unit `dir` holds no cloud between t0 and t1 (m
+// along it): its altitudes there lie above the highest top or below the lowest base of every column the
+// stretch crosses. False when unsure.
+bool noCloudOnSegment(vec3 rayOrigin, vec3 dir, float t0, float t1)
+{
+    float h0;
+    float h1;
+    vec2 m0 = weatherMapPosition(rayOrigin + dir * t0, h0);
+    vec2 m1 = weatherMapPosition(rayOrigin + dir * t1, h1);
+    // The altitude along a straight line is convex in t: highest at an end, lowest at an end or at the
+    // point nearest the earth's centre.
+    float hHigh = max(h0, h1);
+    float hLow = min(h0, h1);
+    float tNearest = -dot(rayOrigin + vec3(0.0f, 0.0f, frame.earth.y), dir);
+    if (tNearest > t0 && tNearest < t1)
+    {
+        float hNearest;
+        weatherMapPosition(rayOrigin + dir * tNearest, hNearest);
+        hLow = min(hLow, hNearest);
+    }
+    ivec2 i0;
+    ivec2 i1;
+    columnBoundsCover(m0, m1, i0, i1);
     uvec2 b00 = texelFetch(columnBounds, i0, 0).xy;
     uvec2 b10 = texelFetch(columnBounds, ivec2(i1.x, i0.y), 0).xy;
     uvec2 b01 = texelFetch(columnBounds, ivec2(i0.x, i1.y), 0).xy;
@@ -55,4 +66,10 @@ bool noCloudBetween(vec3 dir, float t0, float t1)
     float baseM = columnBoundsBaseM(min(min(b00.x, b10.x), min(b01.x, b11.x)));
     float topM = columnBoundsTopM(max(max(b00.y, b10.y), max(b01.y, b11.y)));
     return hLow > topM || hHigh < baseM;
+}
+
+// The same for the view ray `dir` from the eye, between t0 and t1 (m from the eye).
+bool noCloudBetween(vec3 dir, float t0, float t1)
+{
+    return noCloudOnSegment(vec3(0.0f), dir, t0, t1);
 }

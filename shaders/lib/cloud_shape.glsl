@@ -94,6 +94,13 @@ float erodeWithDetail(float shape, float detailFbm, float h, float strength)
     return saturate1(remapValue(shape, detail * strength, 1.0f, 0.0f, 1.0f));
 }
 
+// Rain makes bases dark: precipitation adds absorption near the base (docs/model.md). The extinction is
+// the scattering coefficient times (1 + this factor), so the single-scattering albedo is 1 / (1 + it).
+float rainAbsorptionFactor(float rainMmH, float heightFraction)
+{
+    return saturate1(rainMmH / 20.0f) * (1.0f - heightFraction) * 1.5f;
+}
+
 // Beer-powder (Schneider 2015): E = 2 e^-d (1 - e^-2d) for optical depth d.
 float beerPowder(float opticalDepth)
 {

@@ -47,6 +47,10 @@ struct RenderCommandOptions
     std::string out = "render";
     bool noDetail = false;
     bool noHighCloud = false;
+    bool reference = false;            ///< path-trace the clouds (skyservice/render/reference_renderer.h)
+    uint32_t referenceSpp = 64;        ///< its samples per pixel
+    std::string referencePhase = "model";  ///< model | mie
+    double dropletDiameterUm = 20.0;   ///< mie: droplet diameter (um)
 };
 
 struct ShowcaseOptions

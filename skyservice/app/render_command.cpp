@@ -4,6 +4,7 @@
 #include "skyservice/app/config_file.h"
 #include "skyservice/app/render_files.h"
 #include "skyservice/app/weather_source.h"
+#include "skyservice/render/reference_renderer.h"
 #include "skyservice/render/renderer.h"
 #include "skyservice/render/view_frustum.h"
 #include "skyservice/sky/ephemeris.h"
@@ -120,7 +121,16 @@ int runRenderCommand(const RenderCommandOptions& options)
         return kExitRuntime;
     setWeather(renderer, weather);
     RenderResult result;
-    SkyStatus status = renderView(renderer, request, quality, result);
+    ReferenceRenderer reference;
+    ReferenceSettings referenceSettings;
+    referenceSettings.samplesPerPixel = options.referenceSpp;
+    referenceSettings.phase = options.referencePhase == "mie" ? ReferencePhase::HgDraine : ReferencePhase::Model;
+    referenceSettings.dropletDiameterUm = options.dropletDiameterUm;
+    SkyStatus status = options.reference ? createReferenceRenderer(renderer, reference) : SkyStatus::success();
+    if (status.ok())
+        status = options.reference
+                     ? renderReference(renderer, reference, request, quality, referenceSettings, result)
+                     : renderView(renderer, request, quality, result);
     int code = kExitOk;
     if (!status.ok())
     {
@@ -135,6 +145,16 @@ int runRenderCommand(const RenderCommandOptions& options)
         facts.deviceName = renderer.ctx.deviceName;
         facts.driver = renderer.ctx.driverInfo;
         facts.quality = qualityToJson(quality);
+        if (options.reference)
+            facts.quality["reference"] = {
+                {"samplesPerPixel", referenceSettings.samplesPerPixel},
+                {"phase", options.referencePhase},
+                {"dropletDiameterUm", referenceSettings.dropletDiameterUm},
+                {"maxScatteringEvents", referenceSettings.maxEvents},
+                {"pathsTruncated", reference.last.pathsTruncated},
+                {"majorantExceeded", reference.last.majorantExceeded},
+                {"dispatches", reference.last.dispatches},
+                {"seconds", reference.last.seconds}};
         if (!writeRenderFiles(options.out, request, result, facts, error))
         {
             std::fprintf(stderr, "skyservice render: %s\n", error.c_str());
@@ -142,8 +162,10 @@ int runRenderCommand(const RenderCommandOptions& options)
         }
         else
         {
-            std::printf("wrote %s.png %s.exr %s.json (GPU %.1f ms)\n", options.out.c_str(), options.out.c_str(),
-                        options.out.c_str(), result.gpuMs.count("total") ? result.gpuMs.at("total") : 0.0);
+            const char* timing = options.reference ? "reference" : "total";
+            std::printf("wrote %s.png %s.exr %s.json (%s %.1f ms)\n", options.out.c_str(), options.out.c_str(),
+                        options.out.c_str(), options.reference ? "path tracing" : "GPU",
+                        result.gpuMs.count(timing) ? result.gpuMs.at(timing) : 0.0);
             if (result.shadowMapSize > 0)
                 std::printf("wrote %s-shadow.exr %s-shadow.png (GPU %.1f ms)\n", options.out.c_str(),
                             options.out.c_str(), result.gpuMs.count("shadowMap") ? result.gpuMs.at("shadowMap") : 0.0);
@@ -154,6 +176,8 @@ int runRenderCommand(const RenderCommandOptions& options)
         std::fprintf(stderr, "skyservice render: %u validation messages\n", renderer.ctx.validationMessages.load());
         code = kExitRuntime;
     }
+    if (options.reference)
+        destroyReferenceRenderer(renderer, reference);
     destroyRenderer(renderer);
     return code;
 }
