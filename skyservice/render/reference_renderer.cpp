@@ -163,10 +163,10 @@ static std::vector<glm::vec4> buildLayerBounds(const WeatherWindow& window)
 
 static SkyStatus uploadLayerBounds(Renderer& r, ReferenceRenderer& ref)
 {
-    if (!r.window)
+    if (!r.weather.window)
         return SkyStatus::failure("reference: no weather window", VK_ERROR_INITIALIZATION_FAILED);
-    const std::vector<glm::vec4> atlas = buildLayerBounds(r.window->window);
-    const uint32_t n = r.window->window.sizeTexels;
+    const std::vector<glm::vec4> atlas = buildLayerBounds(r.weather.window->window);
+    const uint32_t n = r.weather.window->window.sizeTexels;
     if (!ref.layerBounds.image || ref.layerBounds.extent.height != n)
     {
         destroyImage(r.ctx, r.memory, ref.layerBounds);
@@ -240,11 +240,11 @@ SkyStatus renderReference(Renderer& r, ReferenceRenderer& ref, const ViewRequest
         SKY_TRY(beginOneShot(r.ctx, shot));
         dispatch(r.ctx, shot.cmd, ref.pathProgram, request.width, request.height, 1, push,
                  {DescriptorInfo(frame.frameUniforms), DescriptorInfo(frame.atmosphereUniforms),
-                  DescriptorInfo(r.weatherWindowImage, r.linearClamp), DescriptorInfo(r.baseNoise, r.linearRepeat),
-                  DescriptorInfo(r.detailNoise, r.linearRepeat), DescriptorInfo(r.curlNoise, r.linearRepeat),
-                  DescriptorInfo(r.transmittanceLut, r.linearClamp), DescriptorInfo(r.skyViewLut, r.linearRepeat),
-                  DescriptorInfo(r.columnBoundsImage, r.nearestRepeat), DescriptorInfo(ref.radianceSum),
-                  DescriptorInfo(ref.depthSum), DescriptorInfo(r.cloudImage), DescriptorInfo(r.depthImage),
+                  DescriptorInfo(r.weather.windowImage, r.linearClamp), DescriptorInfo(r.noise.base, r.linearRepeat),
+                  DescriptorInfo(r.noise.detail, r.linearRepeat), DescriptorInfo(r.noise.curl, r.linearRepeat),
+                  DescriptorInfo(r.atmosphere.transmittanceLut, r.linearClamp), DescriptorInfo(r.atmosphere.skyViewLut, r.linearRepeat),
+                  DescriptorInfo(r.weather.columnBoundsImage, r.nearestRepeat), DescriptorInfo(ref.radianceSum),
+                  DescriptorInfo(ref.depthSum), DescriptorInfo(r.march.cloudImage), DescriptorInfo(r.march.depthImage),
                   DescriptorInfo(ref.stats), DescriptorInfo(ref.paths),
                   DescriptorInfo(ref.layerBounds, r.nearestRepeat)});
         SKY_TRY(endOneShot(r.ctx, shot));
@@ -259,31 +259,31 @@ SkyStatus renderReference(Renderer& r, ReferenceRenderer& ref, const ViewRequest
     // The real-time composite over the path-traced clouds, into the images the frame asked for.
     const FrameOutputs outputs = FrameOutputs::of(request, q);
     CompositeImages images;
-    images.cloud = &r.cloudImage;
-    images.depth = &r.depthImage;
-    images.history = &r.historyStandIn;
-    images.linear = outputs.linearImage ? &r.linearImage : &r.linearStandIn;
-    images.sky = outputs.sky ? &r.skyImage : &r.linearStandIn;
-    images.cloudLayer = outputs.cloudLayer ? &r.cloudLayerImage : &r.linearStandIn;
-    images.cloudOut = &r.linearStandIn;
-    images.depthOut = &r.depthStandIn;
+    images.cloud = &r.march.cloudImage;
+    images.depth = &r.march.depthImage;
+    images.history = &r.composite.historyStandIn;
+    images.linear = outputs.linearImage ? &r.composite.linearImage : &r.composite.linearStandIn;
+    images.sky = outputs.sky ? &r.composite.skyImage : &r.composite.linearStandIn;
+    images.cloudLayer = outputs.cloudLayer ? &r.composite.cloudLayerImage : &r.composite.linearStandIn;
+    images.cloudOut = &r.composite.linearStandIn;
+    images.depthOut = &r.composite.depthStandIn;
     OneShot shot;
     SKY_TRY(beginOneShot(r.ctx, shot));
     recordComposite(r, shot.cmd, request, images);
     SKY_TRY(endOneShot(r.ctx, shot));
 
     if (outputs.display)
-        SKY_TRY(readInto(r, r.displayImage, result.displayRgba8));
+        SKY_TRY(readInto(r, r.composite.displayImage, result.displayRgba8));
     if (outputs.cloud)
-        SKY_TRY(readInto(r, r.cloudImage, result.cloudRgbaHalf));
+        SKY_TRY(readInto(r, r.march.cloudImage, result.cloudRgbaHalf));
     if (outputs.depth)
-        SKY_TRY(readInto(r, r.depthImage, result.cloudDepthM));
+        SKY_TRY(readInto(r, r.march.depthImage, result.cloudDepthM));
     if (outputs.linear)
-        SKY_TRY(readInto(r, r.linearImage, result.linearRgbaHalf));
+        SKY_TRY(readInto(r, r.composite.linearImage, result.linearRgbaHalf));
     if (outputs.sky)
-        SKY_TRY(readInto(r, r.skyImage, result.skyRgbaHalf));
+        SKY_TRY(readInto(r, r.composite.skyImage, result.skyRgbaHalf));
     if (outputs.cloudLayer)
-        SKY_TRY(readInto(r, r.cloudLayerImage, result.cloudLayerRgbaHalf));
+        SKY_TRY(readInto(r, r.composite.cloudLayerImage, result.cloudLayerRgbaHalf));
     result.gpuMs.clear();
     result.gpuMs["reference"] = ref.last.seconds * 1000.0;
     return SkyStatus::success();
