@@ -116,3 +116,22 @@ TEST(ServiceConfig, EmptyFileFolderAndCommentOnlyFileAreRefused)
         EXPECT_EQ(c.renderRateHz, 7.0);  // untouched
     }
 }
+
+// toml++ 3.3 reaches an unreachable branch (undefined behaviour) on some code points where a key begins
+// (the config fuzzer: U+FDFF); a non-ASCII byte outside a string or comment is refused first, naming
+// the line and column, while non-ASCII text in comments and strings stays fine.
+TEST(ServiceConfig, NonAsciiOutsideStringsIsRefusedInStringsAndCommentsFine)
+{
+    skytest::TempDir tmp;
+    const std::string bad = tmp.path + "/bad.toml", good = tmp.path + "/good.toml";
+    std::ofstream(bad) << "[service]\nrender_rate_hz = 5\n\xef\xb7\xbf!*\n*";
+    std::ofstream(good) << "# 45\xc2\xb0 north\n[service]\nrender_rate_hz = 5 # \xc2\xb2\n"
+                           "socket_path = \"/tmp/\xc3\xa9t\xc3\xa9 \\\" '.sock\"\n";
+    ServiceConfig c = defaultServiceConfig();
+    std::string error;
+    EXPECT_FALSE(loadServiceConfig(bad, c, error));
+    EXPECT_NE(error.find(bad + ":3:1: a non-ASCII character"), std::string::npos) << error;
+    error.clear();
+    EXPECT_TRUE(loadServiceConfig(good, c, error)) << error;
+    EXPECT_EQ(c.renderRateHz, 5.0);
+}
