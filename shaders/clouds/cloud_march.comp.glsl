@@ -56,24 +56,7 @@ shared uint groupLookups;
 #include "shaders/clouds/cloud_lighting.glsl"
 #include "shaders/clouds/high_cloud.glsl"
 #include "shaders/clouds/view_ray.glsl"
-
-// What a stretch of a pixel's ray leaves: radiance toward the eye (premultiplied), transmittance, and the
-// sums of the transmittance-weighted depth.
-struct CloudPath
-{
-    vec3 radiance;
-    float transmittance;
-    float depthWeighted;
-    float depthWeight;
-};
-
-// `front` seen through, then `back`.
-CloudPath inFrontOf(CloudPath front, CloudPath back)
-{
-    return CloudPath(front.radiance + front.transmittance * back.radiance, front.transmittance * back.transmittance,
-                     front.depthWeighted + front.transmittance * back.depthWeighted,
-                     front.depthWeight + front.transmittance * back.depthWeight);
-}
+#include "shaders/clouds/cloud_path.glsl"
 
 // Marches the ray of `pixel` and stores it at `texel`; returns its density lookups.
 uint marchPixel(ivec2 pixel, ivec2 texel)

@@ -71,6 +71,7 @@ layout(binding = 15) uniform sampler2D layerBounds;
 #include "shaders/clouds/empty_space.glsl"
 #include "shaders/clouds/high_cloud.glsl"
 #include "shaders/clouds/view_ray.glsl"
+#include "shaders/clouds/cloud_path.glsl"
 #include "shaders/reference/reference_media.glsl"
 
 float luminanceOf(vec3 c)
@@ -290,24 +291,6 @@ uint escape(INOUT(Path) p, INOUT(Sums) sums)
     return startShadow(p, sums, REFERENCE_MODE_GROUND_SHADOW, up, true);
 }
 
-// What a layer leaves on a pixel's ray: premultiplied radiance, transmittance and the sums of the
-// transmittance-weighted depth (the march's CloudPath).
-struct LayerSum
-{
-    vec3 radiance;
-    float transmittance;
-    float depthWeighted;
-    float depthWeight;
-};
-
-// `front` seen through, then `back`.
-LayerSum inFrontOf(LayerSum front, LayerSum back)
-{
-    return LayerSum(front.radiance + front.transmittance * back.radiance, front.transmittance * back.transmittance,
-                    front.depthWeighted + front.transmittance * back.depthWeighted,
-                    front.depthWeight + front.transmittance * back.depthWeight);
-}
-
 // Loop iterations a density lookup takes (cloudDensity's loop over the layers), counted against the budget;
 // a stretch's majorant takes as many.
 const uint DENSITY_ITERATIONS = uint(MAX_CLOUD_LAYERS) + 1u;
@@ -414,9 +397,9 @@ void main()
     HighCloudSample high = sampleHighCloud(dir, dir.z, hc, frame.earth.x);
     if (high.alpha > 0.0f && !referenceFlag(REFERENCE_FLAG_UNIT_LIGHT | REFERENCE_FLAG_HEMISPHERE))
     {
-        LayerSum clouds = LayerSum(cloudRadiance, 1.0f - alpha, alpha * cloudDepth, alpha);
-        LayerSum highCloud = LayerSum(high.radiance, 1.0f - high.alpha, high.alpha * high.distanceM, high.alpha);
-        LayerSum c = hc > frame.shell.w ? inFrontOf(highCloud, clouds) : inFrontOf(clouds, highCloud);
+        CloudPath clouds = CloudPath(cloudRadiance, 1.0f - alpha, alpha * cloudDepth, alpha);
+        CloudPath highCloud = CloudPath(high.radiance, 1.0f - high.alpha, high.alpha * high.distanceM, high.alpha);
+        CloudPath c = hc > frame.shell.w ? inFrontOf(highCloud, clouds) : inFrontOf(clouds, highCloud);
         cloudRadiance = c.radiance;
         alpha = 1.0f - c.transmittance;
         cloudDepth = c.depthWeight > 1e-4f ? c.depthWeighted / c.depthWeight : 0.0f;
