@@ -315,19 +315,20 @@ TEST(ShmRing, ConcurrentWriterAndReaderNeverAcceptAMixedFrame)
 
 TEST(ShmRing, WriterNeverWaitsForAReaderKilledMidRead)
 {
-    ShmRingWriter w;
-    std::string error;
+    // The reader is forked before the writer exists (a writer starts copy threads; a child forked while a
+    // thread starts may inherit a held lock and hang) and opens the ring when told it is published.
     ShmRingConfig config = smallConfig(2);
-    ASSERT_TRUE(w.create(config, error)) << error;
-    TestFrame first(1, 32, 16, 8);
-    ASSERT_TRUE(w.publish(first.frame, error));
-    int ready[2];
+    int ready[2], go[2];
     ASSERT_EQ(::pipe(ready), 0);
+    ASSERT_EQ(::pipe(go), 0);
     pid_t child = ::fork();
     ASSERT_GE(child, 0);
     if (child == 0)
     {
         // The reader: maps, acquires, and is killed while it holds the frame.
+        char start = 0;
+        if (::read(go[0], &start, 1) != 1)
+            ::_exit(1);
         ShmRingReader r;
         std::string e;
         ShmFrameView v;
@@ -337,6 +338,14 @@ TEST(ShmRing, WriterNeverWaitsForAReaderKilledMidRead)
         ::sleep(60);
         ::_exit(0);
     }
+    ::close(go[0]);
+    ShmRingWriter w;
+    std::string error;
+    ASSERT_TRUE(w.create(config, error)) << error;
+    TestFrame first(1, 32, 16, 8);
+    ASSERT_TRUE(w.publish(first.frame, error));
+    ASSERT_EQ(::write(go[1], "g", 1), 1);
+    ::close(go[1]);
     ::close(ready[1]);
     char ok = 0;
     ASSERT_EQ(::read(ready[0], &ok, 1), 1);
@@ -369,6 +378,8 @@ TEST(ShmRing, WriterNeverWaitsForAReaderKilledMidRead)
 
 TEST(ShmRing, StaleObjectIsReplacedLiveOneRefused)
 {
+    // Both children are forked before this process makes a writer: a writer starts copy threads, and a
+    // child forked while another thread may hold the allocator's lock (ASan's especially) can hang in it.
     const std::string name = test::uniqueShmName();
     // A "crashed service": creates the ring and exits without destroying it.
     pid_t child = ::fork();
@@ -384,23 +395,7 @@ TEST(ShmRing, StaleObjectIsReplacedLiveOneRefused)
     int status = 0;
     ::waitpid(child, &status, 0);
     ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-    ShmRingReader stale;
-    std::string error;
-    ASSERT_TRUE(stale.open(name, error)) << "the crashed writer's object should still exist";
-    EXPECT_EQ(stale.header()->writer_pid, uint32_t(child));
-
-    ShmRingConfig c = smallConfig(4);
-    c.name = name;
-    ShmRingWriter w;
-    ASSERT_TRUE(w.create(c, error)) << error;
-    ShmRingReader fresh;
-    ASSERT_TRUE(fresh.open(name, error)) << error;
-    EXPECT_EQ(fresh.header()->slot_count, 4u);
-    EXPECT_EQ(fresh.header()->writer_pid, uint32_t(::getpid()));
-    // The old mapping stays what it was (the object was unlinked, not rewritten).
-    EXPECT_EQ(stale.header()->slot_count, 3u);
-
-    // A live writer in another process keeps its object.
+    // A live writer in another process.
     const std::string liveName = test::uniqueShmName();
     int ready[2];
     ASSERT_EQ(::pipe(ready), 0);
@@ -423,6 +418,23 @@ TEST(ShmRing, StaleObjectIsReplacedLiveOneRefused)
     ASSERT_EQ(::read(ready[0], &ok, 1), 1);
     ::close(ready[0]);
     ASSERT_EQ(ok, 'y');
+
+    ShmRingReader stale;
+    std::string error;
+    ASSERT_TRUE(stale.open(name, error)) << "the crashed writer's object should still exist";
+    EXPECT_EQ(stale.header()->writer_pid, uint32_t(child));
+    ShmRingConfig c = smallConfig(4);
+    c.name = name;
+    ShmRingWriter w;
+    ASSERT_TRUE(w.create(c, error)) << error;
+    ShmRingReader fresh;
+    ASSERT_TRUE(fresh.open(name, error)) << error;
+    EXPECT_EQ(fresh.header()->slot_count, 4u);
+    EXPECT_EQ(fresh.header()->writer_pid, uint32_t(::getpid()));
+    // The old mapping stays what it was (the object was unlinked, not rewritten).
+    EXPECT_EQ(stale.header()->slot_count, 3u);
+
+    // The live writer keeps its object.
     ShmRingConfig second = smallConfig();
     second.name = liveName;
     ShmRingWriter other;
