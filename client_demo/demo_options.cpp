@@ -9,6 +9,7 @@
 
 #include <cstdlib>
 #include <map>
+#include <vector>
 
 namespace demo
 {
@@ -37,7 +38,16 @@ int parseDemoOptions(int argc, char** argv, DemoOptions& o)
     app.add_option("--screenshot", o.screenshotPath, "Window: write the last presented image to this PNG");
     app.add_option("--width", o.width, "Frame width (pixels)")->check(CLI::Range(8, 8192))->capture_default_str();
     app.add_option("--height", o.height, "Frame height (pixels)")->check(CLI::Range(8, 8192))->capture_default_str();
-    app.add_option("--fov", o.fovDeg, "Vertical field of view (degrees)")->check(CLI::Range(1.0, 170.0));
+    CLI::Option* fovOption =
+        app.add_option("--fov", o.angles.fovDeg, "Vertical field of view (degrees)")->check(CLI::Range(1.0, 170.0));
+    std::vector<double> frustumDeg;
+    app.add_option("--frustum", frustumDeg,
+                   "An off-centre frustum, as one channel of a display wall: LEFT,RIGHT,UP,DOWN half-angles from the "
+                   "view axis (degrees, each in (-85, 85), LEFT+RIGHT and UP+DOWN above 1); instead of --fov")
+        ->delimiter(',')
+        ->expected(4)
+        ->check(CLI::Range(-84.999, 84.999))
+        ->excludes(fovOption);
     Aircraft& a = o.aircraft;
     app.add_option("--lat", a.latDeg, "Start latitude (degrees)")->check(CLI::Range(-89.9, 89.9))->capture_default_str();
     app.add_option("--lon", a.lonDeg, "Start longitude (degrees)")->check(CLI::Range(-180.0, 180.0))->capture_default_str();
@@ -69,6 +79,19 @@ int parseDemoOptions(int argc, char** argv, DemoOptions& o)
         return app.exit(e) == 0 ? 0 : 2;
     }
     o.ground = !noGround;
+    if (frustumDeg.size() == 4)
+    {
+        if (frustumDeg[0] + frustumDeg[1] <= 1.0 || frustumDeg[2] + frustumDeg[3] <= 1.0)
+        {
+            std::fprintf(stderr, "client_demo: --frustum: LEFT+RIGHT and UP+DOWN must each be above 1 degree\n");
+            return 2;
+        }
+        o.angles.asymmetric = true;
+        o.angles.leftDeg = frustumDeg[0];
+        o.angles.rightDeg = frustumDeg[1];
+        o.angles.upDeg = frustumDeg[2];
+        o.angles.downDeg = frustumDeg[3];
+    }
     if (o.transport == Transport::Vulkan && o.composite == CompositeMode::Layers)
     {
         // The zero-copy transport exports the display image only (skyclient.h).

@@ -22,7 +22,7 @@ struct DemoOptions
     std::string screenshotPath;   ///< window: write the last presented image here (PNG)
     unsigned width = 640;         ///< rendered frame size (pixels); also the window's first size
     unsigned height = 360;
-    double fovDeg = 60.0;         ///< vertical field of view (degrees)
+    ViewAngles angles;            ///< the frustum (--fov or --frustum)
     Aircraft aircraft;            ///< where the flight starts
     std::string timeIso;          ///< "" = keep the service's time
     double rate = 0.0;            ///< simulated s per real s, sent with --time

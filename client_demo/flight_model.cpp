@@ -53,7 +53,7 @@ FlightInput scriptedInput(unsigned /*frameIndex*/)
     return in;
 }
 
-SkyShmView viewOf(const Aircraft& a, double fovDeg, unsigned width, unsigned height)
+SkyShmView viewOf(const Aircraft& a, const ViewAngles& angles, unsigned width, unsigned height)
 {
     SkyShmView v{};
     v.lat_deg = a.latDeg;
@@ -62,7 +62,15 @@ SkyShmView viewOf(const Aircraft& a, double fovDeg, unsigned width, unsigned hei
     v.heading_deg = a.headingDeg;
     v.pitch_deg = a.pitchDeg;
     v.roll_deg = 0.0;
-    v.fov_deg = fovDeg;
+    v.fov_deg = angles.asymmetric ? angles.upDeg + angles.downDeg : angles.fovDeg;
+    if (angles.asymmetric)
+    {
+        v.asymmetric = 1;
+        v.left_deg = angles.leftDeg;
+        v.right_deg = angles.rightDeg;
+        v.up_deg = angles.upDeg;
+        v.down_deg = angles.downDeg;
+    }
     v.width = width;
     v.height = height;
     return v;

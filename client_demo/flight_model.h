@@ -46,12 +46,24 @@ void advanceAircraft(Aircraft& aircraft, const FlightInput& input, double dtS);
  **********************************************************************/
 FlightInput scriptedInput(unsigned frameIndex);
 
+/// The frustum: symmetric (the vertical field of view) or off-centre, as one channel of a display wall
+/// (half-angles from the view axis, PROTOCOL.md "Views").
+struct ViewAngles
+{
+    double fovDeg = 60.0;     ///< vertical field of view (degrees) when not asymmetric
+    bool asymmetric = false;  ///< true: the four half-angles below
+    double leftDeg = 0.0;
+    double rightDeg = 0.0;
+    double upDeg = 0.0;
+    double downDeg = 0.0;
+};
+
 /**
  * @param[in] aircraft the aircraft.
- * @param[in] fovDeg vertical field of view (degrees).
+ * @param[in] angles the frustum.
  * @param[in] width, height image size (pixels).
  * @return the view to send to the service (roll 0).
  **********************************************************************/
-SkyShmView viewOf(const Aircraft& aircraft, double fovDeg, unsigned width, unsigned height);
+SkyShmView viewOf(const Aircraft& aircraft, const ViewAngles& angles, unsigned width, unsigned height);
 
 }  // namespace demo

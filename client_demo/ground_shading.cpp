@@ -52,8 +52,18 @@ GroundCamera makeGroundCamera(const SkyShmView& view)
     c.upEnu = std::cos(roll) * up0 + std::sin(roll) * right0;
     c.width = std::max(view.width, 1u);
     c.height = std::max(view.height, 1u);
-    c.tanHalfY = std::tan(view.fov_deg * kDegToRad * 0.5);
-    c.tanHalfX = c.tanHalfY * double(c.width) / double(c.height);
+    if (view.asymmetric == 1)
+    {
+        c.tanLeft = std::tan(view.left_deg * kDegToRad);
+        c.tanRight = std::tan(view.right_deg * kDegToRad);
+        c.tanUp = std::tan(view.up_deg * kDegToRad);
+        c.tanDown = std::tan(view.down_deg * kDegToRad);
+    }
+    else
+    {
+        c.tanUp = c.tanDown = std::tan(view.fov_deg * kDegToRad * 0.5);
+        c.tanLeft = c.tanRight = c.tanUp * double(c.width) / double(c.height);
+    }
     c.altitudeM = view.alt_m;
     c.latDeg = view.lat_deg;
     c.lonDeg = view.lon_deg;
@@ -66,10 +76,12 @@ GroundCamera makeGroundCamera(const SkyShmView& view)
 
 glm::dvec3 viewRay(const GroundCamera& camera, double xPx, double yPx)
 {
-    const double ndcX = xPx / double(camera.width) * 2.0 - 1.0;
-    const double ndcY = yPx / double(camera.height) * 2.0 - 1.0;
-    return glm::normalize(camera.forwardEnu + ndcX * camera.tanHalfX * camera.rightEnu -
-                          ndcY * camera.tanHalfY * camera.upEnu);
+    // Left edge -tanLeft to right edge +tanRight; top edge +tanUp to bottom edge -tanDown (view_ray.glsl).
+    const double u = xPx / double(camera.width);
+    const double v = yPx / double(camera.height);
+    const double x = -camera.tanLeft + u * (camera.tanLeft + camera.tanRight);
+    const double y = camera.tanUp - v * (camera.tanUp + camera.tanDown);
+    return glm::normalize(camera.forwardEnu + x * camera.rightEnu + y * camera.upEnu);
 }
 
 bool intersectGround(const GroundCamera& camera, const glm::dvec3& dirEnu, GroundHit& hit)

@@ -22,8 +22,10 @@ struct GroundCamera
     glm::dvec3 forwardEnu{0.0, 1.0, 0.0};  ///< unit, east-north-up at the eye
     glm::dvec3 rightEnu{1.0, 0.0, 0.0};
     glm::dvec3 upEnu{0.0, 0.0, 1.0};
-    double tanHalfX = 1.0;      ///< tan(horizontal half field of view)
-    double tanHalfY = 1.0;      ///< tan(vertical half field of view)
+    double tanLeft = 1.0;       ///< tan of the frustum's half-angles from the view axis (symmetric or not)
+    double tanRight = 1.0;
+    double tanUp = 1.0;
+    double tanDown = 1.0;
     double altitudeM = 0.0;     ///< eye height above the ellipsoid (m)
     double earthRadiusM = 0.0;  ///< local (Gaussian) radius of curvature at the eye, sqrt(M N) (m)
     double latDeg = 0.0;        ///< eye latitude (degrees)

@@ -104,7 +104,7 @@ int runHeadless(const DemoOptions& o)
         for (unsigned i = 0; code == 0 && i < o.frames; ++i)
         {
             uint64_t wantId = lastId + 1;
-            if (!source->setView(viewOf(aircraft, o.fovDeg, o.width, o.height)) || !source->requestFrame(wantId))
+            if (!source->setView(viewOf(aircraft, o.angles, o.width, o.height)) || !source->requestFrame(wantId))
             {
                 std::fprintf(stderr, "client_demo: %s\n", source->lastError().c_str());
                 code = 1;

@@ -25,7 +25,8 @@ double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(
 bool sameView(const SkyShmView& a, const SkyShmView& b)
 {
     return a.lat_deg == b.lat_deg && a.lon_deg == b.lon_deg && a.alt_m == b.alt_m && a.heading_deg == b.heading_deg &&
-           a.pitch_deg == b.pitch_deg && a.fov_deg == b.fov_deg && a.width == b.width && a.height == b.height;
+           a.pitch_deg == b.pitch_deg && a.fov_deg == b.fov_deg && a.asymmetric == b.asymmetric &&
+           a.left_deg == b.left_deg && a.right_deg == b.right_deg && a.up_deg == b.up_deg && a.down_deg == b.down_deg && a.width == b.width && a.height == b.height;
 }
 
 // Everything the window owns, destroyed in reverse order of creation.
@@ -140,7 +141,7 @@ int runWindowed(const DemoOptions& o)
         unsigned renderWidth = 0;
         unsigned renderHeight = 0;
         renderSizeFor(s.swapchain.width, s.swapchain.height, o, renderWidth, renderHeight);
-        const SkyShmView view = viewOf(aircraft, o.fovDeg, renderWidth, renderHeight);
+        const SkyShmView view = viewOf(aircraft, o.angles, renderWidth, renderHeight);
         if (!sameView(view, sentView))
         {
             if (!s.source->setView(view))

@@ -11,7 +11,7 @@ add_executable(test_window_motion gpu/test_window_motion.cpp gpu/scenes.cpp)
 target_link_libraries(test_window_motion PRIVATE sky_renderer GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_window_motion TEST_PREFIX "window." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
 
-add_executable(test_weather_stage unit/test_weather_stage.cpp)
+add_executable(test_weather_stage unit/test_weather_stage.cpp unit/test_weather_worker.cpp)
 target_link_libraries(test_weather_stage PRIVATE sky_renderer GTest::gtest_main sky_warnings)
 gtest_discover_tests(test_weather_stage TEST_PREFIX "window." DISCOVERY_TIMEOUT 30 PROPERTIES LABELS cpu TIMEOUT 300)
 

@@ -88,6 +88,7 @@ SkyStatus beginFrameCommands(const Context& ctx, MemoryTracker& memory, FrameCon
         // A larger frame or more layers than ever before: never in steady state. This context's last
         // frame is done, so its buffer can go at once.
         destroyBuffer(ctx, memory, frame.readback);
+        frame.shadowMapIdHeld = 0;
         SKY_TRY(createBuffer(ctx, memory, frame.readback, readbackBytesNeeded, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                              MemoryUse::HostReadback, "frame readback (host-cached)"));
     }
@@ -129,14 +130,25 @@ SkyStatus waitFrameCommands(const Context& ctx, FrameContext& frame)
     return SkyStatus::success();
 }
 
-ReadbackRegion addImageReadback(FrameContext& frame, const Image& image)
+ReadbackRegion reserveImageReadback(FrameContext& frame, const Image& image)
 {
     ReadbackRegion region;
     region.offset = frame.readbackUsed;
     region.bytes = VkDeviceSize(image.extent.width) * image.extent.height * formatBytes(image.format);
     VK_CHECK(region.offset + readbackBytes(image) <= frame.readback.size ? VK_SUCCESS : VK_ERROR_OUT_OF_HOST_MEMORY);
     frame.readbackUsed += readbackBytes(image);
+    return region;
+}
+
+void queueImageReadback(FrameContext& frame, const Image& image, const ReadbackRegion& region)
+{
     frame.readbackQueue.emplace_back(&image, region.offset);
+}
+
+ReadbackRegion addImageReadback(FrameContext& frame, const Image& image)
+{
+    const ReadbackRegion region = reserveImageReadback(frame, image);
+    queueImageReadback(frame, image, region);
     return region;
 }
 

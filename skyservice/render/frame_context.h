@@ -46,6 +46,10 @@ struct FrameContext
     VkDeviceSize readbackUsed = 0;  ///< bytes handed out by addImageReadback since beginFrameCommands
     /// Images queued by addImageReadback, copied by recordReadbacks.
     std::vector<std::pair<const Image*, VkDeviceSize>> readbackQueue;
+    /// The shadow map (ShadowMapDrawing::id) whose transmittance `readback` holds at shadowMapHeldOffset
+    /// (0: none). A reused map is not copied again: frames reserve its region at the same place first.
+    uint64_t shadowMapIdHeld = 0;
+    VkDeviceSize shadowMapHeldOffset = 0;
     bool submitted = false;     ///< its fence will signal (wait before reuse)
     /// Objects this frame was the last to use, freed once its fence has signalled.
     std::vector<std::function<void()>> deletions;
@@ -71,6 +75,10 @@ SkyStatus waitFrameCommands(const Context& ctx, FrameContext& frame);
 /// Reserves room for `image` (layer 0, GENERAL layout) in the readback buffer (16-byte aligned) and queues
 /// its copy for recordReadbacks.
 ReadbackRegion addImageReadback(FrameContext& frame, const Image& image);
+/// The two halves of addImageReadback: room reserved now, the copy queued later (or not at all, when the
+/// region still holds what the copy would write).
+ReadbackRegion reserveImageReadback(FrameContext& frame, const Image& image);
+void queueImageReadback(FrameContext& frame, const Image& image, const ReadbackRegion& region);
 /// Records the queued copies (one barrier into TRANSFER_SRC for all, the copies, one barrier back to
 /// GENERAL) and the barrier that makes them visible to the host. After the frame's last pass.
 void recordReadbacks(FrameContext& frame);

@@ -186,6 +186,8 @@ SkyStatus submitPrepared(Renderer& r, PreparedView& v, const ViewRequest& reques
     ticket.request = request;
     ticket.reprojected = quality.reprojected;
     ticket.lightVolume = v.params.lightVolume.z > 0.0f;
+    if (shadow)
+        ticket.shadow.transmittance = reserveShadowMapReadback(r, frame, quality);  // first: a fixed offset
     recordFrame(r, frame, request, v.camera, v.sunMoon, v.in, v.params, ticket.plan, ticket.facts);
     if (shadow)
         recordShadowMap(r, frame, request, quality, v.camera, v.sunMoon, ticket.shadow, ticket.facts);

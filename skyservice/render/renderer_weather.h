@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 // The renderer's weather, in one place: the snapshot drawn and its version, the staged weather prepared
-// on a worker thread (weather_stage.h), the window of the eye's lattice cell with its GPU images and the
-// next cell's window made on a worker thread (window_provider.h), and the eye's motion that says which
+// on its one worker thread (weather_stage.h), the window of the eye's lattice cell with its GPU images and the
+// next cell's window made on the same worker (window_provider.h), and the eye's motion that says which
 // cell comes next. setWeather / stageWeather (renderer.h) change it; updateWeatherWindow
-// (window_upload.h) advances it once per frame, on the frame's thread: the workers only compute.
+// (window_upload.h) advances it once per frame, on the frame's thread: the worker only computes.
 #pragma once
 
 #include "skyservice/render/weather_stage.h"
+#include "skyservice/render/weather_worker.h"
 #include "skyservice/render/window_provider.h"
 #include "skyservice/vk/resources.h"
 
@@ -18,17 +19,20 @@ namespace sky
 
 struct RendererWeather
 {
-    std::shared_ptr<const WeatherSnapshot> snapshot;  ///< the weather drawn (shared with the worker threads)
+    /// Makes staged weathers and prefetched windows. First member, so destroyed last: the jobs it still
+    /// runs hold their own references to what they read, and the futures below never wait on it.
+    WeatherWorker worker;
+    std::shared_ptr<const WeatherSnapshot> snapshot;  ///< the weather drawn (shared with the worker's jobs)
     /// Of `snapshot`: a new one per setWeather or staged weather swapped in. Windows carry the version
     /// they were made from (WindowKey::weatherVersion), so a window of an older weather is never used.
     uint64_t version = 0;
     uint64_t versionsIssued = 0;  ///< the last version given out (staged weathers get theirs early)
-    WeatherStage stage;           ///< a new weather being prepared on a worker thread (weather_stage.h)
+    WeatherStage stage;           ///< a new weather being prepared on `worker` (weather_stage.h)
     /// The window on the GPU (centred on the lattice node of the eye, earth/window_lattice.h): frames
     /// whose eye stays in that node's cell, with the same weather and window settings, reuse it.
     std::shared_ptr<const PreparedWindow> window;
     bool windowOnGpu = false;  ///< windowImage and columnBoundsImage hold `window` (false after a failed upload)
-    WindowPrefetch prefetch;   ///< the next cell's window, made on a worker thread
+    WindowPrefetch prefetch;   ///< the next cell's window, made on `worker`
     glm::dvec3 lastEyeEcefM{0.0};  ///< eye of the previous frame: its motion says which cell is next
     std::chrono::steady_clock::time_point lastFrameClock{};  ///< when the previous frame began (real time)
     double eyeSpeedMps = 0;    ///< estimate of the eye's horizontal speed: it sets the look-ahead
@@ -38,7 +42,7 @@ struct RendererWeather
 
 /// Makes the window's GPU images (filled by the first frame's updateWeatherWindow).
 SkyStatus createWeatherImages(const Context& ctx, MemoryTracker& memory, RendererWeather& weather);
-/// Destroys the images; the worker threads' jobs finish on their own (their futures are waited for).
+/// Destroys the images; the worker's jobs finish on their own (the worker joins when RendererWeather goes).
 void destroyWeatherImages(const Context& ctx, MemoryTracker& memory, RendererWeather& weather);
 
 }  // namespace sky

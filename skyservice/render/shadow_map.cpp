@@ -267,6 +267,7 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
     const uint32_t size = request.shadowMapSize;
     ShadowMapDrawing next = drawingFor(r, request, quality, camera, sunMoon);
     ShadowMapDrawing& drawn = r.shadowPass.drawn;
+    const ReadbackRegion reserved = readback.transmittance;
     readback = ShadowMapReadback{};
     readback.recorded = true;
     readback.redrawn = !sameMap(drawn, next);
@@ -278,7 +279,15 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
     }
     if (quality.readback)
     {
-        readback.transmittance = addImageReadback(frame, r.shadowPass.transmittance);
+        // A reused map is copied once into each frame context's buffer, not every frame (4 MiB at 1024²).
+        readback.transmittance = reserved;
+        const bool held = frame.shadowMapIdHeld == drawn.id && frame.shadowMapHeldOffset == reserved.offset;
+        if (!held)
+        {
+            queueImageReadback(frame, r.shadowPass.transmittance, reserved);
+            frame.shadowMapIdHeld = drawn.id;
+            frame.shadowMapHeldOffset = reserved.offset;
+        }
         if ((request.readback & kReadShadowDetail) != 0)
             readback.detail = addImageReadback(frame, r.shadowPass.image);
     }
@@ -287,6 +296,11 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
     facts.shadowReference = drawn.reference;
     facts.shadowMapId = drawn.id;
     facts.shadowMapRedrawn = readback.redrawn;
+}
+
+ReadbackRegion reserveShadowMapReadback(const Renderer& r, FrameContext& frame, const QualitySettings& quality)
+{
+    return quality.readback ? reserveImageReadback(frame, r.shadowPass.transmittance) : ReadbackRegion{};
 }
 
 void collectShadowMap(const Renderer& r, const FrameContext& frame, const ShadowMapReadback& readback,

@@ -10,7 +10,8 @@
 // which is how the weather window places the model's cells; the GPU puts the same point on the eye's
 // osculating sphere (error < 1 m within 50 km, 10 m at 200 km: skyservice/earth/geodesy.h).
 //
-// Usage (inside a frame): validateShadowMapRequest, prepareShadowMap, recordShadowMap, then collectShadowMap.
+// Usage (inside a frame): validateShadowMapRequest, prepareShadowMap, reserveShadowMapReadback, recordShadowMap,
+// then collectShadowMap.
 #pragma once
 
 #include "shaders/shared/shadow_map_params.h"
@@ -140,6 +141,11 @@ void destroyShadowMapPass(const Context& ctx, MemoryTracker& memory, ShadowMapPa
 /// the queue, the steady frame does not).
 SkyStatus prepareShadowMap(Renderer& r, const ViewRequest& request);
 
+/// Room for the transmittance in the frame's readback buffer, reserved before any other readback of the
+/// frame (so it lies at the same offset every frame and a reused map need not be copied again); goes into
+/// recordShadowMap's `readback.transmittance`. Empty without readback.
+ReadbackRegion reserveShadowMapReadback(const Renderer& r, FrameContext& frame, const QualitySettings& quality);
+
 /**
  * Record the shadow map of the frame into its command buffer, and the copies of its texels.
  *
@@ -150,7 +156,8 @@ SkyStatus prepareShadowMap(Renderer& r, const ViewRequest& request);
  * @param[in] quality the settings (shadowSteps, readback).
  * @param[in] camera the eye's frame (centre of the map, osculating radius).
  * @param[in] sunMoon the sun and moon at the eye.
- * @param[out] readback where the texels will lie.
+ * @param[in,out] readback in: `transmittance` from reserveShadowMapReadback; out: where the texels lie
+ *   (copied only when this frame context's buffer does not hold this drawing already).
  * @param[out] facts shadowMapSize and shadowMap (metadata).
  **********************************************************************/
 void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request, const QualitySettings& quality,

@@ -73,7 +73,7 @@ void releaseStage(WeatherStage& s) { s.held = false; }
 
 void cancelStage(WeatherStage& s) { forgetStaged(s); }
 
-std::optional<StagedResult> advanceStage(WeatherStage& s, const WindowKey& eyeKey, bool wait)
+std::optional<StagedResult> advanceStage(WeatherStage& s, WeatherWorker& worker, const WindowKey& eyeKey, bool wait)
 {
     for (;;)
     {
@@ -118,9 +118,9 @@ std::optional<StagedResult> advanceStage(WeatherStage& s, const WindowKey& eyeKe
             WeatherMaker make = std::move(s.make);  // the snapshot is made once; s.weather keeps it after
             s.make = nullptr;
             std::shared_ptr<const WeatherSnapshot> weather = s.weather;
-            s.job = std::async(std::launch::async, [make = std::move(make), weather = std::move(weather), want] {
-                return runStageJob(make, weather, want);
-            });
+            s.job = worker.submit<StagedResult>(
+                WeatherJobPriority::Staged,
+                [make = std::move(make), weather = std::move(weather), want] { return runStageJob(make, weather, want); });
         }
         if (!wait)
             return std::nullopt;

@@ -3,7 +3,7 @@
 //
 // setWeather makes the next frame resample the whole window on the frame path (17-85 ms). A staged
 // weather instead gets its snapshot made (e.g. a timeline sampled), validated and its window resampled
-// for the eye's lattice node on a worker thread, while frames go on drawing the old weather; the first
+// for the eye's lattice node on the weather worker (weather_worker.h), while frames go on drawing the old weather; the first
 // frame after the job finished swaps it in (and drops the reprojection history, as setWeather does).
 // That frame renders exactly what a one-shot render with the new weather renders: its window is the one
 // of its pose's node, made from the same snapshot (window_provider.h: the texels depend on the key only).
@@ -24,6 +24,7 @@
 //    with the reason in lastError; the frames keep the last good weather.
 #pragma once
 
+#include "skyservice/render/weather_worker.h"
 #include "skyservice/render/window_provider.h"
 
 #include <functional>
@@ -79,11 +80,11 @@ void releaseStage(WeatherStage& s);
 void cancelStage(WeatherStage& s);
 inline bool stagePending(const WeatherStage& s) { return s.version != 0; }
 
-/// One frame's step: collects a finished job without waiting, starts the next job for `eyeKey`'s node
+/// One frame's step: collects a finished job without waiting, starts the next job (on `worker`) for `eyeKey`'s node
 /// (its weatherVersion is ignored), and returns the weather and window to show from this frame on
 /// when the staged weather is ready for that node (and released). With `wait` (nothing is on screen
 /// yet, so there is nothing to keep drawing) it blocks until the staged weather is ready or refused,
 /// held or not.
-std::optional<StagedResult> advanceStage(WeatherStage& s, const WindowKey& eyeKey, bool wait);
+std::optional<StagedResult> advanceStage(WeatherStage& s, WeatherWorker& worker, const WindowKey& eyeKey, bool wait);
 
 }  // namespace sky

@@ -92,8 +92,8 @@ std::shared_ptr<const PreparedWindow> takeWindow(WindowPrefetch& prefetch,
     return prepareWindow(*weather, key);
 }
 
-void prefetchWindow(WindowPrefetch& prefetch, const std::shared_ptr<const WeatherSnapshot>& weather,
-                    const WindowKey& key)
+void prefetchWindow(WindowPrefetch& prefetch, WeatherWorker& worker,
+                    const std::shared_ptr<const WeatherSnapshot>& weather, const WindowKey& key)
 {
     if (prefetch.job.valid())
     {
@@ -105,7 +105,8 @@ void prefetchWindow(WindowPrefetch& prefetch, const std::shared_ptr<const Weathe
     }
     prefetch.key = key;
     std::shared_ptr<const WeatherSnapshot> keep = weather;
-    prefetch.job = std::async(std::launch::async, [keep, key] { return prepareWindow(*keep, key); });
+    prefetch.job = worker.submit<std::shared_ptr<const PreparedWindow>>(
+        WeatherJobPriority::Prefetch, [keep, key] { return prepareWindow(*keep, key); });
 }
 
 }  // namespace sky

@@ -4,7 +4,7 @@
 // A window is centred on a lattice node (earth/window_lattice.h), so a moving eye needs a new one only
 // when it crosses into another lattice cell. The renderer asks for the window of the eye's node every
 // frame (takeWindow) and names the node the eye is heading for (prefetchWindow): that one is resampled,
-// its anvils derived and summarised on a worker thread while frames go on. When the eye arrives, the
+// its anvils derived and summarised on the weather worker (weather_worker.h) while frames go on. When the eye arrives, the
 // window is ready (it takes 17-85 ms to make, the eye needs ~9 s to cross a cell at 250 m/s); if it is
 // not, takeWindow waits for it, so the window used never depends on timing.
 #pragma once
@@ -12,6 +12,7 @@
 #include "skyservice/earth/geodesy.h"
 #include "skyservice/earth/weather_window.h"
 #include "skyservice/earth/window_lattice.h"
+#include "skyservice/render/weather_worker.h"
 #include "skyservice/render/window_analysis.h"
 #include "weather_ingest/weather_snapshot.h"
 
@@ -96,10 +97,10 @@ std::shared_ptr<const PreparedWindow> takeWindow(WindowPrefetch& prefetch,
                                                  const std::shared_ptr<const WeatherSnapshot>& weather,
                                                  const WindowKey& key);
 
-/// Starts preparing `key` on a worker thread unless it is already being prepared or a job still runs
+/// Starts preparing `key` on `worker` unless it is already being prepared or a job still runs
 /// (one at a time: a started job is never abandoned mid-way). The job keeps its own reference to the
 /// weather, so a setWeather meanwhile is safe (its result is then simply not used).
-void prefetchWindow(WindowPrefetch& prefetch, const std::shared_ptr<const WeatherSnapshot>& weather,
-                    const WindowKey& key);
+void prefetchWindow(WindowPrefetch& prefetch, WeatherWorker& worker,
+                    const std::shared_ptr<const WeatherSnapshot>& weather, const WindowKey& key);
 
 }  // namespace sky

@@ -14,7 +14,7 @@ SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const Qual
                   quality.windowHalfExtentM, quality.windowWarpRadiusM};
     // A staged weather whose window for this node is ready replaces the current one from this frame on
     // (with nothing drawn yet, this frame waits for it: there is no old weather to keep drawing).
-    if (std::optional<StagedResult> staged = advanceStage(w.stage, key, !w.snapshot))
+    if (std::optional<StagedResult> staged = advanceStage(w.stage, w.worker, key, !w.snapshot))
     {
         w.snapshot = staged->weather;
         w.version = staged->version;
@@ -65,7 +65,7 @@ SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const Qual
         {
             WindowKey nextKey = key;
             nextKey.centre = *next;
-            prefetchWindow(w.prefetch, w.snapshot, nextKey);
+            prefetchWindow(w.prefetch, w.worker, w.snapshot, nextKey);
         }
     }
     return SkyStatus::success();

@@ -6,8 +6,10 @@
 #include "client_demo/ground_shading.h"
 #include "client_demo/utc_time.h"
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace
@@ -77,6 +79,55 @@ TEST(ClientDemoGround, PixelCentreRowsMeetTheHorizonWhereTheServiceDoes)
     const GroundCamera camDown = makeGroundCamera(down);
     ASSERT_TRUE(intersectGround(camDown, viewRay(camDown, 32.0, 32.0), hit));
     EXPECT_NEAR(hit.distanceM, 1500.0, 1.0);
+}
+
+// One channel of a 2x1 display wall (left 40, right 0, up 20, down 10 degrees): the ground camera's rays
+// span exactly those angles, the right edge is the view axis, and the other channel's left edge meets it.
+TEST(ClientDemoGround, AsymmetricChannelsSpanTheirHalfAnglesAndMeetAtTheAxis)
+{
+    const double kDeg = 3.14159265358979323846 / 180.0;
+    SkyShmView left = levelView(200, 100);
+    left.asymmetric = 1;
+    left.left_deg = 40.0;
+    left.right_deg = 0.0;
+    left.up_deg = 20.0;
+    left.down_deg = 10.0;
+    SkyShmView right = left;
+    right.left_deg = 0.0;
+    right.right_deg = 40.0;
+    const GroundCamera l = makeGroundCamera(left);
+    const GroundCamera r = makeGroundCamera(right);
+    auto angleDeg = [&](const glm::dvec3& a, const glm::dvec3& b) {
+        return std::acos(std::min(1.0, glm::dot(a, b))) / kDeg;
+    };
+    // The view axis's row: tan(20) of tan(20) + tan(10) down from the top edge.
+    const double axisRow = 100.0 * std::tan(20.0 * kDeg) / (std::tan(20.0 * kDeg) + std::tan(10.0 * kDeg));
+    // Heading 0, level: forward is north, right is east, up is up.
+    const glm::dvec3 leftEdge = viewRay(l, 0.0, axisRow);
+    EXPECT_NEAR(std::atan2(-leftEdge.x, leftEdge.y) / kDeg, 40.0, 1e-9) << "left edge 40 degrees left of the axis";
+    EXPECT_NEAR(angleDeg(viewRay(l, 200.0, axisRow), l.forwardEnu), 0.0, 1e-6) << "right edge on the axis";
+    const glm::dvec3 top = viewRay(l, 200.0, 0.0);
+    EXPECT_NEAR(std::atan2(top.z, top.y) / kDeg, 20.0, 1e-9) << "top edge 20 degrees up";
+    const glm::dvec3 bottom = viewRay(l, 200.0, 100.0);
+    EXPECT_NEAR(std::atan2(bottom.z, bottom.y) / kDeg, -10.0, 1e-9) << "bottom edge 10 degrees down";
+    for (double y : {0.0, 37.5, 100.0})
+        EXPECT_NEAR(angleDeg(viewRay(l, 200.0, y), viewRay(r, 0.0, y)), 0.0, 1e-6) << "the channels meet, row " << y;
+    // A symmetric view is the same camera as before: fov 30 = up 15 + down 15, sides from the aspect.
+    SkyShmView sym = levelView(200, 100);
+    sym.fov_deg = 30.0;
+    const GroundCamera s = makeGroundCamera(sym);
+    EXPECT_NEAR(s.tanUp, std::tan(15.0 * kDeg), 1e-12);
+    EXPECT_NEAR(s.tanLeft, 2.0 * std::tan(15.0 * kDeg), 1e-12);
+    // The demo's view of an asymmetric channel carries the four angles and fov = up + down.
+    ViewAngles angles;
+    angles.asymmetric = true;
+    angles.leftDeg = 40.0;
+    angles.upDeg = 20.0;
+    angles.downDeg = 10.0;
+    const SkyShmView sent = viewOf(Aircraft{}, angles, 200, 100);
+    EXPECT_EQ(sent.asymmetric, 1u);
+    EXPECT_DOUBLE_EQ(sent.left_deg, 40.0);
+    EXPECT_DOUBLE_EQ(sent.fov_deg, 30.0);
 }
 
 TEST(ClientDemoGround, ShadowLookupFollowsTheGeoReference)

@@ -82,8 +82,8 @@ LatestFrame deckFrame(double alpha, double cloudDepthM)
 std::array<uint32_t, 2> pixelToward(const glm::dvec3& d)
 {
     const GroundCamera cam = makeGroundCamera(levelView());
-    const double ndcX = d.x / d.y / cam.tanHalfX;
-    const double ndcY = -d.z / d.y / cam.tanHalfY;
+    const double ndcX = d.x / d.y / cam.tanRight;
+    const double ndcY = -d.z / d.y / cam.tanUp;  // symmetric: tanUp = tanDown
     return {uint32_t((ndcX + 1.0) * 0.5 * kWidth), uint32_t((ndcY + 1.0) * 0.5 * kHeight)};
 }
 

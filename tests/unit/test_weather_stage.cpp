@@ -29,6 +29,13 @@ namespace
 
 constexpr int64_t kNoon = 1782043200;  // 2026-06-21T12:00:00Z
 
+/// The stages' weather worker (a renderer has one in RendererWeather).
+WeatherWorker& worker()
+{
+    static WeatherWorker w;
+    return w;
+}
+
 WindowKey keyAt(double latDeg, double lonDeg)
 {
     QualitySettings q;
@@ -47,7 +54,7 @@ std::optional<StagedResult> stepUntilDone(WeatherStage& s, const WindowKey& eye,
     {
         if (steps)
             *steps = i + 1;
-        std::optional<StagedResult> out = advanceStage(s, eye, false);
+        std::optional<StagedResult> out = advanceStage(s, worker(), eye, false);
         if (out || !stagePending(s))
             return out;
         std::this_thread::sleep_for(std::chrono::milliseconds(2));
@@ -72,7 +79,7 @@ TEST(WeatherStage, SwapsInTheWindowAFrameWouldMakeAndNeverOnTheStepThatStartsIt)
     std::atomic<int> made{0};
     stage(s, 7, [&] { ++made; return weather; }, StageSwap::WhenReady);
     const WindowKey eye = keyAt(44.3, 7.5);
-    EXPECT_FALSE(advanceStage(s, eye, false)) << "the step that starts the job must not wait for it";
+    EXPECT_FALSE(advanceStage(s, worker(), eye, false)) << "the step that starts the job must not wait for it";
     int steps = 0;
     std::optional<StagedResult> out = stepUntilDone(s, eye, &steps);
     ASSERT_TRUE(out);
@@ -100,16 +107,16 @@ TEST(WeatherStage, HeldUntilReleasedAndRemadeForTheNodeTheEyeMovedTo)
     stage(s, 3, [&] { ++made; return weather; }, StageSwap::WhenReleased);
     const WindowKey a = keyAt(44.3, 7.5), b = keyAt(44.33, 7.5);  // 3.3 km apart: other nodes
     ASSERT_FALSE(a.centre == b.centre);
-    EXPECT_FALSE(advanceStage(s, a, false));
+    EXPECT_FALSE(advanceStage(s, worker(), a, false));
     waitForJob(s);
-    EXPECT_FALSE(advanceStage(s, a, false)) << "held: ready, but not released";
+    EXPECT_FALSE(advanceStage(s, worker(), a, false)) << "held: ready, but not released";
     ASSERT_TRUE(s.ready);
     // The eye moved into another cell: the window alone is made again (the snapshot is not).
-    EXPECT_FALSE(advanceStage(s, b, false));
+    EXPECT_FALSE(advanceStage(s, worker(), b, false));
     waitForJob(s);
-    EXPECT_FALSE(advanceStage(s, b, false));
+    EXPECT_FALSE(advanceStage(s, worker(), b, false));
     releaseStage(s);
-    std::optional<StagedResult> out = advanceStage(s, b, false);
+    std::optional<StagedResult> out = advanceStage(s, worker(), b, false);
     ASSERT_TRUE(out);
     EXPECT_TRUE(out->window->key.centre == b.centre);
     EXPECT_EQ(made.load(), 1);
@@ -124,9 +131,9 @@ TEST(WeatherStage, ANewerStageSupersedesAnOlderOneWhoseJobStillRuns)
     auto older = builtin(kNoon), newer = builtin(kNoon + 3600);
     stage(s, 1, [open, older] { open.wait(); return older; }, StageSwap::WhenReady);
     const WindowKey eye = keyAt(44.3, 7.5);
-    EXPECT_FALSE(advanceStage(s, eye, false));  // job 1 starts and blocks on the gate
+    EXPECT_FALSE(advanceStage(s, worker(), eye, false));  // job 1 starts and blocks on the gate
     stage(s, 2, [newer] { return newer; }, StageSwap::WhenReady);
-    EXPECT_FALSE(advanceStage(s, eye, false));  // job 1 still runs: never abandoned, never waited for
+    EXPECT_FALSE(advanceStage(s, worker(), eye, false));  // job 1 still runs: never abandoned, never waited for
     EXPECT_EQ(s.jobVersion, 1u);
     gate.set_value();
     std::optional<StagedResult> out = stepUntilDone(s, eye);
@@ -170,16 +177,16 @@ TEST(WeatherStage, WaitingBlocksUntilReadyAndCancelDropsTheResult)
 {
     WeatherStage s;
     stage(s, 5, [] { return builtin(kNoon); }, StageSwap::WhenReleased);
-    std::optional<StagedResult> out = advanceStage(s, keyAt(44.3, 7.5), true);  // nothing on screen yet
+    std::optional<StagedResult> out = advanceStage(s, worker(), keyAt(44.3, 7.5), true);  // nothing on screen yet
     ASSERT_TRUE(out) << "with wait, the staged weather is handed out at once, held or not";
     EXPECT_EQ(out->version, 5u);
 
     stage(s, 6, [] { return builtin(kNoon); }, StageSwap::WhenReady);
-    EXPECT_FALSE(advanceStage(s, keyAt(44.3, 7.5), false));
+    EXPECT_FALSE(advanceStage(s, worker(), keyAt(44.3, 7.5), false));
     cancelStage(s);
     EXPECT_FALSE(stagePending(s));
     waitForJob(s);
-    EXPECT_FALSE(advanceStage(s, keyAt(44.3, 7.5), false));
+    EXPECT_FALSE(advanceStage(s, worker(), keyAt(44.3, 7.5), false));
     EXPECT_FALSE(s.job.valid()) << "the cancelled job's result was collected and dropped";
     EXPECT_EQ(s.swapped, 1u);
 }
