@@ -31,13 +31,14 @@ struct LatestFrame
     double exposure = 1.0;           ///< linear values / exposure = W m^-2 sr^-1 nm^-1
     std::vector<float> skyRgba;      ///< width*height*4: the sky without clouds, linear
     std::vector<float> cloudsRgba;   ///< width*height*4: the clouds, premultiplied linear radiance + alpha
-    std::vector<float> depthM;       ///< width*height: the clouds' transmittance-weighted distance (m), 0 = none
+    /// width*height*2: per pixel the cloud's front, then its transmittance-weighted distance (m), 0 = none.
+    std::vector<float> depthM;
 
     /// True when the sky, clouds and depth layers are all present for this frame's size.
     bool hasLayers() const
     {
         const size_t n = size_t(width) * height;
-        return n > 0 && skyRgba.size() == 4 * n && cloudsRgba.size() == 4 * n && depthM.size() == n;
+        return n > 0 && skyRgba.size() == 4 * n && cloudsRgba.size() == 4 * n && depthM.size() == 2 * n;
     }
 };
 

@@ -10,7 +10,7 @@
 namespace demo
 {
 
-glm::dvec3 compositeOverScene(const glm::dvec3& sky, const glm::dvec4& clouds, double cloudDepthM,
+glm::dvec3 compositeOverScene(const glm::dvec3& sky, const glm::dvec4& clouds, double cloudFrontM,
                               const SceneSample& scene)
 {
     const glm::dvec3 cloudRgb(clouds.r, clouds.g, clouds.b);
@@ -18,8 +18,10 @@ glm::dvec3 compositeOverScene(const glm::dvec3& sky, const glm::dvec4& clouds, d
     if (!scene.hit)
         return sky * (1.0 - alpha) + cloudRgb;
     // A cloud without a depth (a reprojected pixel filled from fresh neighbours that saw no cloud) is put in
-    // front: dropping it cut dark notches into cloud edges over the terrain.
-    if (alpha <= 0.0 || (cloudDepthM > 0.0 && scene.distanceM < cloudDepthM))
+    // front: dropping it cut dark notches into cloud edges over the terrain. A scene point nearer than the
+    // cloud's front has (almost) no cloud before it: the weighted distance, deeper inside, would hide the
+    // cloud in front of a hill that stands in the cloud's first hundreds of metres.
+    if (alpha <= 0.0 || (cloudFrontM > 0.0 && scene.distanceM < cloudFrontM))
         return scene.radiance;
     return scene.radiance * (1.0 - alpha) + cloudRgb;
 }
@@ -78,8 +80,10 @@ CloudLayerEstimate cloudLayerOf(const LatestFrame& frame, const GroundCamera& ca
         for (uint32_t x = 0; x < frame.width; ++x)
         {
             const size_t i = size_t(y) * frame.width + x;
-            if (frame.cloudsRgba[4 * i + 3] >= 0.5f && frame.depthM[i] > 0.0f)
-                heights.push_back(rayHeightM(camera, viewRay(camera, x + 0.5, y + 0.5), frame.depthM[i]));
+            // The weighted distance (G): it lies inside the cloud, the front on its skin.
+            const float weightedM = frame.depthM[2 * i + 1];
+            if (frame.cloudsRgba[4 * i + 3] >= 0.5f && weightedM > 0.0f)
+                heights.push_back(rayHeightM(camera, viewRay(camera, x + 0.5, y + 0.5), weightedM));
         }
     CloudLayerEstimate layer;
     if (heights.size() < 16)
@@ -132,7 +136,7 @@ void compositeRows(const LatestFrame& frame, const CompositeOptions& options, co
             const float* c = &frame.cloudsRgba[4 * i];
             const glm::dvec3 sky(s[0], s[1], s[2]);
             const glm::dvec4 clouds(c[0], c[1], c[2], c[3]);
-            const double depthM = frame.depthM[i];
+            const double frontM = frame.depthM[2 * i];  // the depth layer's R: the cloud's front
             SceneSample sample;
             TerrainHit hit;
             if (options.ground &&
@@ -152,10 +156,10 @@ void compositeRows(const LatestFrame& frame, const CompositeOptions& options, co
                 sample.distanceM = hit.distanceM;
                 sample.radiance = hazeTerrain(lit, sky, hit.distanceM, options.hazeM);
                 ++stats.terrainPixels;
-                if (clouds.a > 0.0 && depthM > 0.0)
-                    ++(hit.distanceM < depthM ? stats.terrainInFrontPixels : stats.terrainBehindCloudPixels);
+                if (clouds.a > 0.0 && frontM > 0.0)
+                    ++(hit.distanceM < frontM ? stats.terrainInFrontPixels : stats.terrainBehindCloudPixels);
             }
-            toDisplayRgb8(compositeOverScene(sky, clouds, depthM, sample), out.pixel(x, y));
+            toDisplayRgb8(compositeOverScene(sky, clouds, frontM, sample), out.pixel(x, y));
         }
 }
 

@@ -27,17 +27,18 @@ struct SceneSample
 /**
  * One pixel's linear colour from the layers and the scene:
  *   no scene:                                   sky * (1 - a) + clouds.rgb
- *   scene nearer than the cloud, or no cloud:   scene
+ *   scene nearer than the cloud's front,
+ *   or no cloud:                                scene
  *   scene behind the cloud, or a cloud (a > 0)
  *   whose depth is unknown (0):                 scene * (1 - a) + clouds.rgb
  *
  * @param[in] sky the sky layer (linear).
  * @param[in] clouds the clouds layer (premultiplied linear rgb, alpha).
- * @param[in] cloudDepthM the depth layer (m; 0 where there is no cloud).
+ * @param[in] cloudFrontM the depth layer's front distance (R; m; 0 where there is no cloud).
  * @param[in] scene what the demo draws in this pixel.
  * @return linear, pre-exposed colour.
  **********************************************************************/
-glm::dvec3 compositeOverScene(const glm::dvec3& sky, const glm::dvec4& clouds, double cloudDepthM,
+glm::dvec3 compositeOverScene(const glm::dvec3& sky, const glm::dvec4& clouds, double cloudFrontM,
                               const SceneSample& scene);
 
 /**

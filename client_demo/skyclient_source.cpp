@@ -45,7 +45,7 @@ SkyClient* connectClient(const std::string& socketPath, std::string& error)
 void copyLayer(const SkyFrameLayer& layer, uint32_t format, uint32_t width, uint32_t height, uint32_t channels,
                std::vector<float>& out)
 {
-    const bool half = format != SKY_FORMAT_R32F_METRES;
+    const bool half = format != SKY_FORMAT_RG32F_METRES;
     const size_t valueBytes = half ? 2 : 4;
     if (layer.format != format || layer.pixels == nullptr || layer.row_bytes < width * channels * valueBytes)
     {
@@ -193,7 +193,7 @@ bool SkyClientSource::copyShm(const SkyFrame& frame, LatestFrame& out)
     copyLayer(frame.layers[SKY_LAYER_SKY], SKY_FORMAT_RGBA16F_LINEAR, frame.width, frame.height, 4, out.skyRgba);
     copyLayer(frame.layers[SKY_LAYER_CLOUDS], SKY_FORMAT_RGBA16F_PREMULTIPLIED, frame.width, frame.height, 4,
               out.cloudsRgba);
-    copyLayer(frame.layers[SKY_LAYER_DEPTH], SKY_FORMAT_R32F_METRES, frame.width, frame.height, 1, out.depthM);
+    copyLayer(frame.layers[SKY_LAYER_DEPTH], SKY_FORMAT_RG32F_METRES, frame.width, frame.height, 2, out.depthM);
     return true;
 }
 

@@ -180,6 +180,8 @@ float marchBaseStepM()
     return clamp((frame.shell.y - frame.shell.x) / 64.0f, 30.0f, 250.0f);
 }
 
+// Below this view transmittance the march stops and the ray counts as opaque.
+const float kMarchOpaqueTransmittance = 0.01f;
 // What a march iteration's one density lookup is for.
 const int MARCH_SEARCH = 0;   // cheap samples with double steps until a cloud is hit
 const int MARCH_FULL = 1;     // full view samples inside a cloud
@@ -189,7 +191,9 @@ const int MARCH_CONE = 3;     // the light cone of a lit view sample
 // March from tEnter to tExit: cheap samples with double steps until a cloud is hit (jumping over
 // stretches the weather's column bounds show empty), full samples inside, back to cheap after 6 empty
 // full samples; step length grows with distance; blue-noise start offset; stop when the transmittance
-// falls below 0.01 (docs/model.md).
+// falls below kMarchOpaqueTransmittance (docs/model.md); the caller then takes the ray as opaque.
+// `frontM` (0 on entry): where the opacity first reaches kCloudFrontOpacity (cloud_path.glsl), found inside
+// the step that crosses it from the step's extinction; stays 0 when it never does.
 // Every iteration takes exactly one density lookup, whichever part of the march it serves (a state:
 // search, full view sample, surface bisection, light cone). The 32 rays of a GPU subgroup are in
 // different parts at once; written as nested loops, the subgroup ran each part's lookups one after the
@@ -197,7 +201,7 @@ const int MARCH_CONE = 3;     // the light cone of a lit view sample
 // `lookups` counts the loop's iterations (density lookups and skip checks): what the ray cost
 // (shaders/shared/march_order.h).
 void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout float transmittance,
-                 inout float depthWeighted, inout float depthWeight, out uint lookups)
+                 inout float depthWeighted, inout float frontM, out uint lookups)
 {
     // The light direction and its angle to the ray come from the uniforms where they are used, not from
     // variables held through the loop (each would hold a register all the way).
@@ -417,13 +421,11 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
         radiance += transmittance * integrateScattering(source, litSigmaE, litStepM);
         float next = transmittance * exp(-litSigmaE * litStepM);
         depthWeighted += (transmittance - next) * t;
-        depthWeight += transmittance - next;
+        if (frontM == 0.0f && next <= 1.0f - kCloudFrontOpacity)
+            frontM = t + clamp(log(transmittance / (1.0f - kCloudFrontOpacity)) / max(litSigmaE, 1e-12f), 0.0f, litStepM);
         transmittance = next;
-        if (transmittance < 0.01f)
-        {
-            transmittance = 0.0f;
+        if (transmittance < kMarchOpaqueTransmittance)
             break;
-        }
         t += litStepM;
         state = MARCH_FULL;
     }

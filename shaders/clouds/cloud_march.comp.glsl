@@ -2,7 +2,8 @@
 // Volumetric cloud march (docs/model.md): one invocation per pixel, front to back through the cloud shell,
 // cone-sampled key light, multiple-scattering octaves, ambient sky and ground light, then the 2D
 // high-cloud layer. Writes premultiplied cloud radiance + alpha (1 - transmittance) and the
-// transmittance-weighted cloud depth.
+// transmittance-weighted cloud depth, and, for the depth layer (FRAME_FLAG_DEPTH_LAYER), the cloud's front
+// (cloud_path.glsl kCloudFrontOpacity).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require  // [[dont_unroll]] in cloud_density.glsl
@@ -45,6 +46,8 @@ layout(binding = 13, std430) buffer MarchOrderBlock
     uint rowOrder[MARCH_ORDER_MAX_ROWS];
     uint rowLookups[MARCH_ORDER_MAX_ROWS];
 } marchOrder;
+// The cloud's front distance (m) beside depthOut: only with FRAME_FLAG_DEPTH_LAYER (a 1x1 stand-in otherwise).
+layout(binding = 14, r32f) uniform writeonly image2D frontOut;
 
 // The largest density-lookup count of this workgroup's rays.
 shared uint groupLookups;
@@ -53,10 +56,10 @@ shared uint groupLookups;
 #include "shaders/clouds/cloud_density.glsl"
 #include "shaders/clouds/light_cone.glsl"
 #include "shaders/clouds/empty_space.glsl"
+#include "shaders/clouds/cloud_path.glsl"
 #include "shaders/clouds/cloud_lighting.glsl"
 #include "shaders/clouds/high_cloud.glsl"
 #include "shaders/clouds/view_ray.glsl"
-#include "shaders/clouds/cloud_path.glsl"
 
 // Marches the ray of `pixel` and stores it at `texel`; returns its density lookups.
 uint marchPixel(ivec2 pixel, ivec2 texel)
@@ -71,24 +74,35 @@ uint marchPixel(ivec2 pixel, ivec2 texel)
     // after it, so that nothing of it is held in registers through the march. With that and fewer variables
     // carried through the march's loop (marchClouds) the NVIDIA compiler gives this shader 80 registers
     // instead of 123: more rays in flight, full-resolution frames ~20 % faster (BENCHMARKS.md).
-    CloudPath clouds = CloudPath(vec3(0.0f), 1.0f, 0.0f, 0.0f);
+    CloudPath clouds = CloudPath(vec3(0.0f), 1.0f, 0.0f, 0.0f, 0.0f);
     uint lookups = 0u;
     float tEnter;
     float tExit;
     if (rayShellInterval(mu, hc, frame.shell.x, frame.shell.y, R, frame.shell.z, tEnter, tExit))
-        marchClouds(dir, tEnter, tExit, clouds.radiance, clouds.transmittance, clouds.depthWeighted, clouds.depthWeight,
+    {
+        marchClouds(dir, tEnter, tExit, clouds.radiance, clouds.transmittance, clouds.depthWeighted, clouds.frontM,
                     lookups);
+        // The weights of the weighted depth add up to the opacity (each step adds the transmittance it
+        // takes): one variable less carried through the march's loop. A march stopped at the transmittance
+        // cutoff is opaque.
+        clouds.depthWeight = 1.0f - clouds.transmittance;
+        if (clouds.transmittance < kMarchOpaqueTransmittance)
+            clouds.transmittance = 0.0f;
+    }
 
     HighCloudSample high = sampleHighCloud(dir, mu, hc, R);
     CloudPath c = clouds;
     if (high.alpha > 0.0f)
     {
-        CloudPath highCloud = CloudPath(high.radiance, 1.0f - high.alpha, high.alpha * high.distanceM, high.alpha);
+        CloudPath highCloud = CloudPath(high.radiance, 1.0f - high.alpha, high.alpha * high.distanceM, high.alpha,
+                                        high.alpha >= kCloudFrontOpacity ? high.distanceM : 0.0f);
         c = hc > frame.shell.w ? inFrontOf(highCloud, clouds) : inFrontOf(clouds, highCloud);
     }
-    float depth = c.depthWeight > 1e-4f ? c.depthWeighted / c.depthWeight : 0.0f;
+    vec2 depth = cloudDepthLayer(c);
     imageStore(cloudOut, texel, vec4(c.radiance, 1.0f - c.transmittance));
-    imageStore(depthOut, texel, vec4(depth, 0.0f, 0.0f, 0.0f));
+    imageStore(depthOut, texel, vec4(depth.y, 0.0f, 0.0f, 0.0f));
+    if ((frame.image.w & FRAME_FLAG_DEPTH_LAYER) != 0u)
+        imageStore(frontOut, texel, vec4(depth.x, 0.0f, 0.0f, 0.0f));
     return lookups;
 }
 

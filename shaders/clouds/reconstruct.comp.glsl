@@ -36,6 +36,11 @@ layout(binding = 2, r32f) uniform readonly image2D freshDepth;      // block res
 layout(binding = 3, rgba16ui) uniform readonly uimage2D historyIn;
 // This frame's: the composite reads it (for the pixels not marched this frame), the next frame reprojects it.
 layout(binding = 4, rgba16ui) uniform writeonly uimage2D historyOut;
+// The depth layer's front distance (FRAME_FLAG_DEPTH_LAYER; 1x1 stand-ins otherwise): the march's fresh
+// fronts (block resolution) and a history of its own beside the packed one, carried the way the depth is.
+layout(binding = 5, r32f) uniform readonly image2D freshFront;
+layout(binding = 6, r32f) uniform readonly image2D frontHistoryIn;
+layout(binding = 7, r32f) uniform writeonly image2D frontHistoryOut;
 
 #include "shaders/clouds/view_ray.glsl"
 
@@ -151,10 +156,13 @@ bool projectPrevious(vec3 v, out vec2 q)
 }
 
 // A pixel not marched this frame (its block is `block`; `box` is shared by the pixels of the block):
-// its cloud, and its depth (m) in `depthM`. One value and one store per pixel, whichever way it goes
-// (lavapipe runs both sides of every branch: a store and a packing per way would all be paid).
-vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshBox) box, OUT(float) depthM)
+// its cloud, its depth (m) in `depthM` and, for the depth layer, its front (m) in `frontM`. One value and
+// one store per pixel, whichever way it goes (lavapipe runs both sides of every branch: a store and a
+// packing per way would all be paid).
+vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshBox) box, OUT(float) depthM,
+                      OUT(float) frontM)
 {
+    const bool front = (frame.image.w & FRAME_FLAG_DEPTH_LAYER) != 0u;
     // Where was this pixel's cloud in the previous frame? Project the direction alone first (exact for
     // anything far away), read the previous depth found there, and project again at that depth (one
     // fixed-point step: follows the parallax of near clouds when the eye moves; exact for a still
@@ -220,6 +228,9 @@ vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
     if (accept)
     {
         depthM = depthGuess;
+        // The front found at the depth's history texel, measured from this eye like the depth.
+        float previousFront = front ? imageLoad(frontHistoryIn, texel).x : 0.0f;
+        frontM = previousFront > 0.0f ? length(frame.previousEye.xyz + normalize(v) * previousFront) : 0.0f;
         return previous;
     }
     // Rejected history (disocclusion, colour clamp) takes the nearest fresh pixel: a sharp value beside a
@@ -228,6 +239,7 @@ vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
     // fresh pixel's depth.
     ivec2 nearestBlock = nearestFreshBlock(pixel, phase, B);
     depthM = imageLoad(freshDepth, nearestBlock).x;
+    frontM = front ? imageLoad(freshFront, nearestBlock).x : 0.0f;
     return onScreen ? imageLoad(freshCloud, nearestBlock) : freshBilinear(pixel, phase, B);
 }
 
@@ -247,13 +259,20 @@ void main()
         ivec2 block = pixel / B;
         vec4 cloud;
         float depthM;
+        float frontM = 0.0f;
         if (pixel == block * B + phase)
         {
             cloud = imageLoad(freshCloud, block);
             depthM = imageLoad(freshDepth, block).x;
+            if ((frame.image.w & FRAME_FLAG_DEPTH_LAYER) != 0u)
+                frontM = imageLoad(freshFront, block).x;
         }
         else
-            cloud = reconstructPixel(pixel, block, phase, B, box, depthM);
+            cloud = reconstructPixel(pixel, block, phase, B, box, depthM, frontM);
         imageStore(historyOut, pixel, packCloudHistory(cloud, depthM));
+        // As the march's (cloud_path.glsl cloudDepthLayer): never beyond the depth, the depth where there
+        // is none (a history made before the layer was asked for holds 0), 0 without cloud.
+        if ((frame.image.w & FRAME_FLAG_DEPTH_LAYER) != 0u)
+            imageStore(frontHistoryOut, pixel, vec4(frontM > 0.0f ? min(frontM, depthM) : depthM, 0.0f, 0.0f, 0.0f));
     }
 }

@@ -34,6 +34,12 @@ layout(binding = 11, rgba16f) uniform writeonly image2D skyOut;
 layout(binding = 12, rgba16f) uniform writeonly image2D cloudLayerOut;
 layout(binding = 13, rgba16f) uniform writeonly image2D cloudOut;
 layout(binding = 14, r32f) uniform writeonly image2D depthOut;
+// The depth layer (FRAME_FLAG_DEPTH_LAYER; 1x1 stand-ins otherwise): the march's fronts (full resolution,
+// or block resolution in reprojected frames), the front history of the pixels not marched this frame, and
+// the layer: R the cloud's front, G its transmittance-weighted distance (m).
+layout(binding = 15, r32f) uniform readonly image2D frontIn;
+layout(binding = 16, r32f) uniform readonly image2D frontHistoryIn;
+layout(binding = 17, rg32f) uniform writeonly image2D depthLayerOut;
 
 #include "shaders/lib/atmosphere_sampling.glsl"
 #include "shaders/clouds/view_ray.glsl"
@@ -72,6 +78,9 @@ void main()
     float depth;
     const int B = int(frame.reprojection.x);
     ivec2 block = pixel / max(B, 1);
+    // Where this pixel's cloud comes from: the march's image at `source`, or the history.
+    bool fresh = true;
+    ivec2 source = pixel;
     if ((frame.image.w & FRAME_FLAG_REPROJECTED) == 0u)
     {
         cloud = imageLoad(cloudIn, pixel);
@@ -81,9 +90,13 @@ void main()
     {
         cloud = imageLoad(cloudIn, block);
         depth = imageLoad(depthIn, block).x;
+        source = block;
     }
     else
+    {
         cloud = unpackCloudHistory(imageLoad(historyIn, pixel), depth);
+        fresh = false;
+    }
     vec3 color = sky;
     // The clouds as the eye sees them through the air in front of them, premultiplied by their alpha.
     vec3 cloudSeen = vec3(0.0f);
@@ -100,6 +113,12 @@ void main()
         imageStore(skyOut, pixel, vec4(sky, 1.0f));
     if ((frame.image.w & FRAME_FLAG_CLOUD_LAYER) != 0u)
         imageStore(cloudLayerOut, pixel, vec4(cloudSeen, cloud.a));
+    if ((frame.image.w & FRAME_FLAG_DEPTH_LAYER) != 0u)
+    {
+        float front = fresh ? imageLoad(frontIn, source).x : imageLoad(frontHistoryIn, pixel).x;
+        // The packed history's depth is rounded (cloud_history.glsl): the front stays in front of it.
+        imageStore(depthLayerOut, pixel, vec4(min(front, depth), depth, 0.0f, 0.0f));
+    }
     if ((frame.image.w & FRAME_FLAG_WRITE_CLOUD) != 0u)
     {
         imageStore(cloudOut, pixel, cloud);

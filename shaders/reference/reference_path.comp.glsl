@@ -397,8 +397,9 @@ void main()
     HighCloudSample high = sampleHighCloud(dir, dir.z, hc, frame.earth.x);
     if (high.alpha > 0.0f && !referenceFlag(REFERENCE_FLAG_UNIT_LIGHT | REFERENCE_FLAG_HEMISPHERE))
     {
-        CloudPath clouds = CloudPath(cloudRadiance, 1.0f - alpha, alpha * cloudDepth, alpha);
-        CloudPath highCloud = CloudPath(high.radiance, 1.0f - high.alpha, high.alpha * high.distanceM, high.alpha);
+        // The reference writes no depth layer: the fronts only fill the struct.
+        CloudPath clouds = CloudPath(cloudRadiance, 1.0f - alpha, alpha * cloudDepth, alpha, 0.0f);
+        CloudPath highCloud = CloudPath(high.radiance, 1.0f - high.alpha, high.alpha * high.distanceM, high.alpha, 0.0f);
         CloudPath c = hc > frame.shell.w ? inFrontOf(highCloud, clouds) : inFrontOf(clouds, highCloud);
         cloudRadiance = c.radiance;
         alpha = 1.0f - c.transmittance;

@@ -96,5 +96,8 @@ struct FrameParams
 #define FRAME_FLAG_SKY_LAYER 32u     // the sky without clouds (linear, pre-exposed)
 #define FRAME_FLAG_CLOUD_LAYER 64u   // the clouds after aerial perspective, premultiplied, + alpha
 #define FRAME_FLAG_WRITE_CLOUD 128u  // reprojected frames: the full-resolution cloud image and depth it composited
+// The depth layer (front and weighted cloud distance, RG32F): the march stores each ray's front distance, the
+// reconstruct pass carries it through its own history, the composite writes the layer.
+#define FRAME_FLAG_DEPTH_LAYER 256u
 
 #endif

@@ -93,6 +93,9 @@ bool writeRenderFiles(const std::string& prefix, const ViewRequest& request, con
             {"sky.G", ExrPixelType::Half, linear.data() + 1, 4},
             {"sky.B", ExrPixelType::Half, linear.data() + 2, 4},
         };
+        // The depth layer's front (its weighted distance is Z), when the render drew it.
+        if (result.depthLayerM.size() == result.cloudDepthM.size() * 2 && !result.cloudDepthM.empty())
+            channels.push_back({"ZFront", ExrPixelType::Float, result.depthLayerM.data(), 2});
         if (!writeExr(prefix + ".exr", result.width, result.height, channels, error))
             return false;
     }

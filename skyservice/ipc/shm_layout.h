@@ -47,7 +47,9 @@ extern "C" {
 #define SKY_FORMAT_RGBA8_SRGB 1u      /* tone-mapped display frame, 4 bytes per pixel, alpha 255 */
 #define SKY_FORMAT_RGBA16F_LINEAR 2u  /* linear radiance (pre-exposed), half floats, 8 bytes per pixel */
 #define SKY_FORMAT_RGBA16F_PREMULTIPLIED 3u /* premultiplied linear radiance (pre-exposed) + alpha, half floats */
-#define SKY_FORMAT_R32F_METRES 4u     /* one float32 per pixel, metres */
+#define SKY_FORMAT_R32F_METRES 4u     /* one float32 per pixel, metres (no layer uses it since the depth layer
+                                         became SKY_FORMAT_RG32F_METRES) */
+#define SKY_FORMAT_RG32F_METRES 5u    /* two float32 per pixel, metres, 8 bytes per pixel */
 
 /* The layers of a frame (SkyShmSlot.layers[i]), each present when some subscriber asked for it:
  *   DISPLAY  SKY_FORMAT_RGBA8_SRGB: the finished picture (tone-mapped, sRGB, alpha 255), as before layers.
@@ -55,9 +57,11 @@ extern "C" {
  *   CLOUDS   SKY_FORMAT_RGBA16F_PREMULTIPLIED: the clouds as the eye sees them through the air in front of
  *            them (aerial perspective applied), premultiplied; alpha = 1 - cloud transmittance. Over the
  *            sky layer: linear = sky * (1 - a) + clouds.rgb.
- *   DEPTH    SKY_FORMAT_R32F_METRES: the transmittance-weighted distance of the cloud along the pixel's ray
- *            (metres from the eye), 0 where alpha is 0. An object at distance d is in front of the cloud
- *            where d < depth.
+ *   DEPTH    SKY_FORMAT_RG32F_METRES: two distances of the cloud along the pixel's ray (metres from the
+ *            eye), both 0 where alpha is 0. R: the cloud's front, where the opacity accumulated from the eye
+ *            first reaches 2 % (the weighted distance where it never does; never beyond it): an object at
+ *            distance d < R is fully in front of the cloud. G: the transmittance-weighted distance (the
+ *            single value this layer held before the front was added).
  * Linear values are pre-exposed: divide by SkyShmSlot.exposure for W m^-2 sr^-1 nm^-1. */
 #define SKY_LAYER_DISPLAY 0u
 #define SKY_LAYER_SKY 1u

@@ -68,6 +68,7 @@ uint32_t bytesPerPixel(uint32_t format)
     case SKY_FORMAT_RGBA16F_LINEAR: return 8;
     case SKY_FORMAT_RGBA16F_PREMULTIPLIED: return 8;
     case SKY_FORMAT_R32F_METRES: return 4;
+    case SKY_FORMAT_RG32F_METRES: return 8;
     default: return 0;
     }
 }
@@ -79,7 +80,7 @@ std::string errnoText(const char* what, const std::string& name)
 
 /// The format of each compositing layer (shm_layout.h); [SKY_LAYER_DISPLAY] is the ring's own format.
 constexpr uint32_t kLayerFormat[SKY_LAYER_COUNT] = {0, SKY_FORMAT_RGBA16F_LINEAR, SKY_FORMAT_RGBA16F_PREMULTIPLIED,
-                                                    SKY_FORMAT_R32F_METRES};
+                                                    SKY_FORMAT_RG32F_METRES};
 
 /// Where things lie in one slot's stride.
 struct SlotLayout

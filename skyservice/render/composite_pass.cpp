@@ -16,9 +16,11 @@ SkyStatus createCompositePass(const Context& ctx, MemoryTracker& memory, Composi
     SKY_TRY(createImage(ctx, memory, pass.historyStandIn, d, "cloud history stand-in (1x1)"));
     d.format = VK_FORMAT_R32_SFLOAT;
     SKY_TRY(createImage(ctx, memory, pass.depthStandIn, d, "cloud depth stand-in (1x1)"));
+    d.format = VK_FORMAT_R32G32_SFLOAT;
+    SKY_TRY(createImage(ctx, memory, pass.depthLayerStandIn, d, "depth layer stand-in (1x1)"));
     OneShot shot;
     SKY_TRY(beginOneShot(ctx, shot));
-    for (Image* img : {&pass.linearStandIn, &pass.historyStandIn, &pass.depthStandIn})
+    for (Image* img : {&pass.linearStandIn, &pass.historyStandIn, &pass.depthStandIn, &pass.depthLayerStandIn})
         transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     return endOneShot(ctx, shot);
 }
@@ -26,7 +28,8 @@ SkyStatus createCompositePass(const Context& ctx, MemoryTracker& memory, Composi
 void destroyCompositePass(const Context& ctx, MemoryTracker& memory, CompositePass& pass)
 {
     for (Image* img : {&pass.displayImage, &pass.linearImage, &pass.skyImage, &pass.cloudLayerImage,
-                       &pass.linearStandIn, &pass.historyStandIn, &pass.depthStandIn})
+                       &pass.depthLayerImage, &pass.linearStandIn, &pass.historyStandIn, &pass.depthStandIn,
+                       &pass.depthLayerStandIn})
         destroyImage(ctx, memory, *img);
     destroyProgram(ctx, pass.program);
 }
@@ -41,7 +44,8 @@ void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& reques
               DescriptorInfo(a.aerialTransmittanceLut, r.linearRepeat), DescriptorInfo(*images.cloud),
               DescriptorInfo(*images.depth), DescriptorInfo(*images.history), DescriptorInfo(*images.linear),
               DescriptorInfo(r.composite.displayImage), DescriptorInfo(*images.sky), DescriptorInfo(*images.cloudLayer),
-              DescriptorInfo(*images.cloudOut), DescriptorInfo(*images.depthOut)});
+              DescriptorInfo(*images.cloudOut), DescriptorInfo(*images.depthOut), DescriptorInfo(*images.front),
+              DescriptorInfo(*images.frontHistory), DescriptorInfo(*images.depthLayer)});
 }
 
 }  // namespace sky

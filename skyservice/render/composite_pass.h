@@ -20,9 +20,11 @@ struct CompositePass
     Image linearImage;   ///< only while frames ask for it (QualitySettings::linearOutput)
     /// Compositing layers, only while frames ask for them (kReadSky, kReadCloudLayer).
     Image skyImage, cloudLayerImage;
+    /// The depth layer (kReadDepthLayer, kDrawDepthLayer): RG32F, R the cloud's front, G its weighted distance.
+    Image depthLayerImage;
     // 1x1 images bound where a pass has nothing to read or write (every binding needs an image): the
     // optional outputs when none is asked for, the history in full-resolution frames.
-    Image linearStandIn, historyStandIn, depthStandIn;
+    Image linearStandIn, historyStandIn, depthStandIn, depthLayerStandIn;
 };
 
 /// Loads the program and makes the stand-ins (layout GENERAL); the frame-size images come with the first frame.
@@ -41,6 +43,9 @@ struct CompositeImages
     const Image* cloudLayer = nullptr;  ///< FRAME_FLAG_CLOUD_LAYER
     const Image* cloudOut = nullptr;    ///< FRAME_FLAG_WRITE_CLOUD: the full-resolution cloud image...
     const Image* depthOut = nullptr;    ///< ... and depth of a reprojected frame
+    const Image* front = nullptr;         ///< FRAME_FLAG_DEPTH_LAYER: the march's fronts (as `depth`)...
+    const Image* frontHistory = nullptr;  ///< ... the front history of the pixels not marched...
+    const Image* depthLayer = nullptr;    ///< ... and the layer written
 };
 
 /// Records the composite pass (sky + clouds + aerial perspective -> display image and the outputs asked for).

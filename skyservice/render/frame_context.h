@@ -31,7 +31,7 @@ struct ReadbackRegion
 /// Where a recorded frame's images lie in its readback buffer (bytes 0: not read back).
 struct FrameReadbackPlan
 {
-    ReadbackRegion display, cloud, depth, linear, sky, cloudLayer;
+    ReadbackRegion display, cloud, depth, linear, sky, cloudLayer, depthLayer;
 };
 
 struct FrameContext

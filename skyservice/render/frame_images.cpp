@@ -20,7 +20,8 @@ SkyStatus remake(Renderer& r, Image& img, const ImageDesc& d, const char* name, 
     return SkyStatus::success();
 }
 
-SkyStatus toGeneral(Renderer& r, const std::vector<Image*>& made)
+// Moves the images made to GENERAL; those in `cleared` are also filled with zeros.
+SkyStatus toGeneral(Renderer& r, const std::vector<Image*>& made, const std::vector<Image*>& cleared = {})
 {
     if (made.empty())
         return SkyStatus::success();
@@ -28,6 +29,10 @@ SkyStatus toGeneral(Renderer& r, const std::vector<Image*>& made)
     SKY_TRY(beginOneShot(r.ctx, shot));
     for (Image* img : made)
         transitionImage(shot.cmd, *img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    const VkClearColorValue zero = {};
+    const VkImageSubresourceRange all = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    for (Image* img : cleared)
+        vkCmdClearColorImage(shot.cmd, img->image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
     return endOneShot(r.ctx, shot);
 }
 
@@ -43,7 +48,8 @@ SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height, const
     {
         // Resize or the first frame: never in steady state. Everything of the old size goes.
         VK_TRY(vkQueueWaitIdle(r.ctx.queue));
-        for (Image* img : {&r.composite.displayImage, &r.composite.linearImage, &r.composite.skyImage, &r.composite.cloudLayerImage})
+        for (Image* img : {&r.composite.displayImage, &r.composite.linearImage, &r.composite.skyImage,
+                           &r.composite.cloudLayerImage, &r.composite.depthLayerImage, &r.march.frontImage})
             destroyImage(r.ctx, r.memory, *img);
         if (!frameOk || cloudImages)  // a resize drops cloud images of the old size
         {
@@ -72,6 +78,9 @@ SkyStatus ensureOutputImages(Renderer& r, uint32_t width, uint32_t height, const
     SKY_TRY(optional(r.composite.linearImage, outputs.linearImage, VK_FORMAT_R16G16B16A16_SFLOAT, "linear frame"));
     SKY_TRY(optional(r.composite.skyImage, outputs.sky, VK_FORMAT_R16G16B16A16_SFLOAT, "sky layer"));
     SKY_TRY(optional(r.composite.cloudLayerImage, outputs.cloudLayer, VK_FORMAT_R16G16B16A16_SFLOAT, "cloud layer"));
+    SKY_TRY(optional(r.composite.depthLayerImage, outputs.depthLayer, VK_FORMAT_R32G32_SFLOAT, "depth layer"));
+    // Full-resolution frames march the fronts at full resolution; reprojected ones into the fresh images.
+    SKY_TRY(optional(r.march.frontImage, outputs.depthLayer && !reprojected, VK_FORMAT_R32_SFLOAT, "cloud front"));
     if (cloudImages && !r.march.cloudImage.image)  // a renderer that made full frames keeps their cloud images
     {
         SKY_TRY(optional(r.march.cloudImage, true, VK_FORMAT_R16G16B16A16_SFLOAT, "cloud radiance"));
@@ -95,9 +104,9 @@ void deferDestroy(Renderer& r, Image& image)
     newest.deletions.push_back([&r, doomed]() mutable { destroyImage(r.ctx, r.memory, doomed); });
 }
 
-SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height, uint32_t blockPx)
+SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height, uint32_t blockPx, bool front)
 {
-    std::vector<Image*> made;
+    std::vector<Image*> made, cleared;
     ImageDesc d;
     d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
     if (!hasSize(r.reconstruct.history[0], width, height))
@@ -109,12 +118,30 @@ SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height,
         d.format = VK_FORMAT_R16G16B16A16_UINT;  // shaders/lib/cloud_history.glsl
         for (Image& h : r.reconstruct.history)
             SKY_TRY(remake(r, h, d, "cloud history (radiance, alpha, depth packed)", made));
+        for (Image& h : r.reconstruct.frontHistory)
+            destroyImage(r.ctx, r.memory, h);
+    }
+    // The fronts' history exists only while frames draw the depth layer: made cleared (the reconstruct
+    // pass then takes each pixel's depth as its front until it is marched), let go when they stop.
+    for (Image& h : r.reconstruct.frontHistory)
+    {
+        if (front && !h.image)
+        {
+            d.width = width;
+            d.height = height;
+            d.format = VK_FORMAT_R32_SFLOAT;
+            SKY_TRY(remake(r, h, d, "cloud front history", made));
+            cleared.push_back(&h);
+        }
+        else if (!front && h.image)
+            deferDestroy(r, h);
     }
     // The fresh images have the size of the block in use: they grow when the eye nears or enters a cloud
     // layer (every pixel is marched inside one: 25 MB at 1080p) and shrink back when it leaves. They only
     // hold this frame's marched pixels, so replacing them never touches the history.
     const uint32_t blocksX = (width + blockPx - 1) / blockPx, blocksY = (height + blockPx - 1) / blockPx;
-    if (!hasSize(r.reconstruct.freshCloudImage, blocksX, blocksY))
+    const bool blockChanged = !hasSize(r.reconstruct.freshCloudImage, blocksX, blocksY);
+    if (blockChanged)
     {
         VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // a change of march block only
         d.width = blocksX;
@@ -124,7 +151,16 @@ SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height,
         d.format = VK_FORMAT_R32_SFLOAT;
         SKY_TRY(remake(r, r.reconstruct.freshDepthImage, d, "fresh cloud depth (one pixel per block)", made));
     }
-    return toGeneral(r, made);
+    if (front && (blockChanged || !r.reconstruct.freshFrontImage.image))
+    {
+        d.width = blocksX;
+        d.height = blocksY;
+        d.format = VK_FORMAT_R32_SFLOAT;
+        SKY_TRY(remake(r, r.reconstruct.freshFrontImage, d, "fresh cloud front (one pixel per block)", made));
+    }
+    else if (!front && r.reconstruct.freshFrontImage.image)
+        deferDestroy(r, r.reconstruct.freshFrontImage);
+    return toGeneral(r, made, cleared);
 }
 
 }  // namespace sky

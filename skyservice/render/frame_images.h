@@ -23,7 +23,8 @@ void deferDestroy(Renderer& r, Image& image);
 // The reprojection images: the two full-resolution packed histories and the fresh pixels at the
 // resolution of the block in use (`blockPx`). The fresh images follow the block (finer near and inside
 // clouds, back to 1/16 after) and are replaced without touching the history, so that flying into and
-// out of a cloud (block 4 -> 2 -> 1 -> 2 -> 4) keeps the history.
-SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height, uint32_t blockPx);
+// out of a cloud (block 4 -> 2 -> 1 -> 2 -> 4) keeps the history. With `front` (the frame draws the depth
+// layer) also the fronts' fresh image and history (made cleared; let go when a frame does not draw it).
+SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height, uint32_t blockPx, bool front);
 
 }  // namespace sky

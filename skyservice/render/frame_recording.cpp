@@ -25,14 +25,22 @@ FrameOutputs FrameOutputs::of(const ViewRequest& request, const QualitySettings&
 {
     FrameOutputs o;
     o.linearImage = quality.linearOutput;
+    const uint32_t bits = request.readback;
+    // Layers kept on the GPU for the export are drawn even when nothing is read back (sky-bench).
+    o.sky = (bits & kDrawSky) != 0;
+    o.cloudLayer = (bits & kDrawCloudLayer) != 0;
+    o.depthLayer = (bits & kDrawDepthLayer) != 0;
     if (!quality.readback)
         return o;
-    const uint32_t bits = request.readback;
     o.display = (bits & kReadDisplay) != 0;
     o.cloud = (bits & kReadCloud) != 0;
     o.depth = (bits & kReadDepth) != 0;
-    o.sky = (bits & kReadSky) != 0;
-    o.cloudLayer = (bits & kReadCloudLayer) != 0;
+    o.readSky = (bits & kReadSky) != 0;
+    o.readCloudLayer = (bits & kReadCloudLayer) != 0;
+    o.readDepthLayer = (bits & kReadDepthLayer) != 0;
+    o.sky = o.sky || o.readSky;
+    o.cloudLayer = o.cloudLayer || o.readCloudLayer;
+    o.depthLayer = o.depthLayer || o.readDepthLayer;
     o.shadowDetail = (bits & kReadShadowDetail) != 0;
     o.linear = quality.linearOutput;
     return o;
@@ -44,7 +52,8 @@ VkDeviceSize frameReadbackBytes(const Renderer& r, const ViewRequest& request, c
     VkDeviceSize bytes = 0;
     const std::pair<bool, const Image*> images[] = {
         {o.display, &r.composite.displayImage}, {o.cloud, &r.march.cloudImage},      {o.depth, &r.march.depthImage},
-        {o.linear, &r.composite.linearImage},   {o.sky, &r.composite.skyImage},          {o.cloudLayer, &r.composite.cloudLayerImage},
+        {o.linear, &r.composite.linearImage},   {o.readSky, &r.composite.skyImage},
+        {o.readCloudLayer, &r.composite.cloudLayerImage}, {o.readDepthLayer, &r.composite.depthLayerImage},
         {request.shadowMap && quality.readback, &r.shadowPass.transmittance},
         {request.shadowMap && o.shadowDetail, &r.shadowPass.image},
     };
@@ -79,7 +88,10 @@ void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, c
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsLightVolume);
     const Image& marchCloud = reprojected ? r.reconstruct.freshCloudImage : r.march.cloudImage;
     const Image& marchDepth = reprojected ? r.reconstruct.freshDepthImage : r.march.depthImage;
-    recordMarch(r, frame, cmd, marchX, marchY, marchCloud, marchDepth);
+    const Image& marchFront = !outputs.depthLayer ? r.composite.depthStandIn
+                              : reprojected       ? r.reconstruct.freshFrontImage
+                                                  : r.march.frontImage;
+    recordMarch(r, frame, cmd, marchX, marchY, marchCloud, marchDepth, marchFront);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsClouds);
     // Reprojected: the packed history the reconstruct pass writes this frame (which the next frame
     // reprojects) holds the pixels not marched this frame; the composite takes the marched ones from the
@@ -98,6 +110,9 @@ void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, c
     images.cloudLayer = outputs.cloudLayer ? &r.composite.cloudLayerImage : &r.composite.linearStandIn;
     images.cloudOut = writeCloud ? &r.march.cloudImage : &r.composite.linearStandIn;
     images.depthOut = writeCloud ? &r.march.depthImage : &r.composite.depthStandIn;
+    images.front = &marchFront;
+    images.frontHistory = outputs.depthLayer && reprojected ? &r.reconstruct.frontHistory[next] : &r.composite.depthStandIn;
+    images.depthLayer = outputs.depthLayer ? &r.composite.depthLayerImage : &r.composite.depthLayerStandIn;
     recordComposite(r, cmd, request, images);
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsComposite);
@@ -112,10 +127,12 @@ void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, c
         plan.depth = addImageReadback(frame, r.march.depthImage);
     if (outputs.linear)
         plan.linear = addImageReadback(frame, r.composite.linearImage);
-    if (outputs.sky)
+    if (outputs.readSky)
         plan.sky = addImageReadback(frame, r.composite.skyImage);
-    if (outputs.cloudLayer)
+    if (outputs.readCloudLayer)
         plan.cloudLayer = addImageReadback(frame, r.composite.cloudLayerImage);
+    if (outputs.readDepthLayer)
+        plan.depthLayer = addImageReadback(frame, r.composite.depthLayerImage);
 }
 
 void collectFrame(Renderer& r, const FrameContext& frame, const ViewRequest& request, bool reprojected,
@@ -150,6 +167,7 @@ void collectFrame(Renderer& r, const FrameContext& frame, const ViewRequest& req
     copyRegion(frame, plan.linear, result.linearRgbaHalf);
     copyRegion(frame, plan.sky, result.skyRgbaHalf);
     copyRegion(frame, plan.cloudLayer, result.cloudLayerRgbaHalf);
+    copyRegion(frame, plan.depthLayer, result.depthLayerM);
 }
 
 }  // namespace sky

@@ -29,7 +29,11 @@ static_assert(kTsCount <= kFrameTimestampSlots, "frame_context.h: kFrameTimestam
 /// linearOutput and readback switches).
 struct FrameOutputs
 {
-    bool display = false, cloud = false, depth = false, linear = false, sky = false, cloudLayer = false;
+    bool display = false, cloud = false, depth = false, linear = false;
+    /// Compositing layers drawn (read back, or only kept on the GPU for the zero-copy export)...
+    bool sky = false, cloudLayer = false, depthLayer = false;
+    /// ... and read back.
+    bool readSky = false, readCloudLayer = false, readDepthLayer = false;
     bool shadowDetail = false;
     bool linearImage = false;  ///< the composite writes the linear frame (even when not read back)
 

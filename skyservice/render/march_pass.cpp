@@ -18,12 +18,13 @@ void destroyMarchPass(const Context& ctx, MemoryTracker& memory, MarchPass& pass
 {
     destroyImage(ctx, memory, pass.cloudImage);
     destroyImage(ctx, memory, pass.depthImage);
+    destroyImage(ctx, memory, pass.frontImage);
     destroyMarchOrder(ctx, memory, pass.order);
     destroyProgram(ctx, pass.program);
 }
 
 void recordMarch(Renderer& r, const FrameContext& frame, VkCommandBuffer cmd, uint32_t marchX, uint32_t marchY,
-                 const Image& cloud, const Image& depth)
+                 const Image& cloud, const Image& depth, const Image& front)
 {
     dispatch(r.ctx, cmd, r.march.program, marchX, marchY, 1, nullptr, 0,
              {DescriptorInfo(frame.frameUniforms), DescriptorInfo(frame.atmosphereUniforms),
@@ -33,7 +34,8 @@ void recordMarch(Renderer& r, const FrameContext& frame, VkCommandBuffer cmd, ui
               DescriptorInfo(r.atmosphere.transmittanceLut, r.linearClamp),
               DescriptorInfo(cloud), DescriptorInfo(depth), DescriptorInfo(r.lightVolume.image, r.linearClamp),
               DescriptorInfo(r.weather.columnBoundsImage, r.nearestRepeat),
-              DescriptorInfo(r.lightVolume.farImage, r.linearClamp), DescriptorInfo(r.march.order.buffer)});
+              DescriptorInfo(r.lightVolume.farImage, r.linearClamp), DescriptorInfo(r.march.order.buffer),
+              DescriptorInfo(front)});
     computeBarrier(cmd);
 }
 

@@ -20,6 +20,8 @@ struct MarchPass
     /// Full-resolution cloud radiance and depth: what a full-resolution frame marches into, and what the
     /// composite of a reprojected frame writes when a reader asks for them (frame_images.h).
     Image cloudImage, depthImage;
+    /// Full-resolution front distance of the depth layer: made while full-resolution frames draw it.
+    Image frontImage;
 };
 
 /// Loads the program and makes the row-order buffers (the cloud images are made with the first frame).
@@ -27,8 +29,9 @@ SkyStatus createMarchPass(const Context& ctx, MemoryTracker& memory, MarchPass& 
 void destroyMarchPass(const Context& ctx, MemoryTracker& memory, MarchPass& pass);
 
 /// Records the march of marchX x marchY rays (one per pixel; in reprojected frames one per block) into
-/// `cloud` and `depth`, then a barrier. The row order must have been prepared (prepareMarchOrder).
+/// `cloud`, `depth` and `front` (written with FRAME_FLAG_DEPTH_LAYER only), then a barrier. The row order
+/// must have been prepared (prepareMarchOrder).
 void recordMarch(Renderer& r, const FrameContext& frame, VkCommandBuffer cmd, uint32_t marchX, uint32_t marchY,
-                 const Image& cloud, const Image& depth);
+                 const Image& cloud, const Image& depth, const Image& front);
 
 }  // namespace sky

@@ -14,7 +14,8 @@ SkyStatus createReconstructPass(const Context& ctx, ReconstructPass& pass)
 
 void destroyReconstructPass(const Context& ctx, MemoryTracker& memory, ReconstructPass& pass)
 {
-    for (Image* img : {&pass.freshCloudImage, &pass.freshDepthImage, &pass.history[0], &pass.history[1]})
+    for (Image* img : {&pass.freshCloudImage, &pass.freshDepthImage, &pass.history[0], &pass.history[1],
+                       &pass.freshFrontImage, &pass.frontHistory[0], &pass.frontHistory[1]})
         destroyImage(ctx, memory, *img);
     destroyProgram(ctx, pass.program);
 }
@@ -27,10 +28,14 @@ void recordReconstruct(Renderer& r, const FrameContext& frame, VkCommandBuffer c
     // One invocation per quad of RECONSTRUCT_QUAD_PX^2 pixels (shaders/shared/bindings.h).
     const uint32_t quadsX = (width + RECONSTRUCT_QUAD_PX - 1) / RECONSTRUCT_QUAD_PX;
     const uint32_t quadsY = (height + RECONSTRUCT_QUAD_PX - 1) / RECONSTRUCT_QUAD_PX;
+    const bool front = pass.freshFrontImage.image != VK_NULL_HANDLE;  // the frame draws the depth layer
+    const Image& standIn = r.composite.depthStandIn;
     dispatch(r.ctx, cmd, pass.program, quadsX, quadsY, 1, nullptr, 0,
              {DescriptorInfo(frame.frameUniforms), DescriptorInfo(pass.freshCloudImage),
               DescriptorInfo(pass.freshDepthImage), DescriptorInfo(pass.history[prev]),
-              DescriptorInfo(pass.history[next])});
+              DescriptorInfo(pass.history[next]), DescriptorInfo(front ? pass.freshFrontImage : standIn),
+              DescriptorInfo(front ? pass.frontHistory[prev] : standIn),
+              DescriptorInfo(front ? pass.frontHistory[next] : standIn)});
     computeBarrier(cmd);
 }
 

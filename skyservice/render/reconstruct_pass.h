@@ -21,6 +21,10 @@ struct ReconstructPass
     /// The reconstructed cloud radiance, alpha and depth of the last two frames (ping-pong), packed in one
     /// 64-bit texel (shaders/lib/cloud_history.glsl); made on the first reprojected frame.
     Image history[2];
+    /// The depth layer's front distance: the fresh pixels' (block resolution) and its own full-resolution
+    /// history beside the packed one (R32F, ping-pong with it); made while frames draw the layer (zero at
+    /// first: the reconstruct pass then takes the depth), let go when they stop.
+    Image freshFrontImage, frontHistory[2];
     ReprojectionHistory reprojection;  ///< which history image holds which frame, and whether it is usable
 };
 

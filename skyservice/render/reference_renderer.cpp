@@ -267,6 +267,9 @@ SkyStatus renderReference(Renderer& r, ReferenceRenderer& ref, const ViewRequest
     images.cloudLayer = outputs.cloudLayer ? &r.composite.cloudLayerImage : &r.composite.linearStandIn;
     images.cloudOut = &r.composite.linearStandIn;
     images.depthOut = &r.composite.depthStandIn;
+    // No depth layer: the path tracer finds no front (FRAME_FLAG_DEPTH_LAYER stays clear).
+    images.front = images.frontHistory = &r.composite.depthStandIn;
+    images.depthLayer = &r.composite.depthLayerStandIn;
     OneShot shot;
     SKY_TRY(beginOneShot(r.ctx, shot));
     recordComposite(r, shot.cmd, request, images);
@@ -280,9 +283,9 @@ SkyStatus renderReference(Renderer& r, ReferenceRenderer& ref, const ViewRequest
         SKY_TRY(readInto(r, r.march.depthImage, result.cloudDepthM));
     if (outputs.linear)
         SKY_TRY(readInto(r, r.composite.linearImage, result.linearRgbaHalf));
-    if (outputs.sky)
+    if (outputs.readSky)
         SKY_TRY(readInto(r, r.composite.skyImage, result.skyRgbaHalf));
-    if (outputs.cloudLayer)
+    if (outputs.readCloudLayer)
         SKY_TRY(readInto(r, r.composite.cloudLayerImage, result.cloudLayerRgbaHalf));
     result.gpuMs.clear();
     result.gpuMs["reference"] = ref.last.seconds * 1000.0;

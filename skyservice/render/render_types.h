@@ -103,7 +103,14 @@ enum ReadbackBits : uint32_t
     kReadSky = 8u,         ///< skyRgbaHalf: linear sky radiance without clouds
     kReadCloudLayer = 16u, ///< cloudLayerRgbaHalf: premultiplied cloud radiance after aerial perspective + alpha
     kReadShadowDetail = 32u,  ///< shadowOpticalDepth as well as shadowTransmittance (files, tests)
-    kReadEverything = kReadDisplay | kReadCloud | kReadDepth | kReadShadowDetail,  ///< what one-shot renders want
+    kReadDepthLayer = 64u, ///< depthLayerM: the cloud's front and weighted distance, two floats a pixel
+    /// Layers drawn on the GPU without being copied back: the zero-copy export copies them from the
+    /// renderer's images (skyservice/render/frame_export.h). A kRead* bit of the same layer draws it too.
+    kDrawSky = 128u,
+    kDrawCloudLayer = 256u,
+    kDrawDepthLayer = 512u,
+    ///< what one-shot renders want
+    kReadEverything = kReadDisplay | kReadCloud | kReadDepth | kReadShadowDetail | kReadDepthLayer,
 };
 
 /// An off-centre frustum, as the channels of a display wall have (CIGI View Definition): the angles from
@@ -169,6 +176,12 @@ struct RenderResult
     /// linear = sky * (1 - cloud.a) + cloud.rgb.
     std::vector<uint16_t> skyRgbaHalf;
     std::vector<uint16_t> cloudLayerRgbaHalf;
+    /// The depth layer (kReadDepthLayer), two floats a pixel (m): the cloud's front, where the opacity
+    /// accumulated from the eye first reaches 2 % (shaders/clouds/cloud_path.glsl kCloudFrontOpacity; the
+    /// weighted distance where it never does; never beyond it), then the transmittance-weighted distance
+    /// (cloudDepthM); both 0 where alpha is 0. Reprojected frames carry the front of the pixels not marched
+    /// through a history of its own (float), the depth through the packed one.
+    std::vector<float> depthLayerM;
     std::map<std::string, double> gpuMs;  ///< GPU time per pass (ms)
     double cpuSetupMs = 0;                ///< CPU time to prepare the frame (weather window etc.)
     double sunAzimuthDeg = 0, sunElevationDeg = 0;

@@ -102,7 +102,8 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
     {
         r.reconstruct.reprojection.block =
             chooseMarchBlock(window, v.camera.eye.altitudeM, eyeOnWindow.offsetM, quality.insideCloudBlockPx);
-        SKY_TRY(ensureReprojectionImages(r, request.width, request.height, r.reconstruct.reprojection.block.blockPx));
+        SKY_TRY(ensureReprojectionImages(r, request.width, request.height, r.reconstruct.reprojection.block.blockPx,
+                                         outputs.depthLayer));
     }
     SKY_TRY(prepareShadowMap(r, request));
 
@@ -149,6 +150,8 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
         v.params.image.w |= FRAME_FLAG_SKY_LAYER;
     if (outputs.cloudLayer)
         v.params.image.w |= FRAME_FLAG_CLOUD_LAYER;
+    if (outputs.depthLayer)
+        v.params.image.w |= FRAME_FLAG_DEPTH_LAYER;
     if (quality.reprojected && (outputs.cloud || outputs.depth))
         v.params.image.w |= FRAME_FLAG_WRITE_CLOUD;
     return SkyStatus::success();
@@ -312,6 +315,7 @@ MappedFrame mappedFrame(const Renderer& r, const FrameTicket& ticket)
     m.skyRgbaHalf = reinterpret_cast<const uint16_t*>(at(ticket.plan.sky));
     m.cloudLayerRgbaHalf = reinterpret_cast<const uint16_t*>(at(ticket.plan.cloudLayer));
     m.cloudDepthM = reinterpret_cast<const float*>(at(ticket.plan.depth));
+    m.depthLayerM = reinterpret_cast<const float*>(at(ticket.plan.depthLayer));
     m.shadowTransmittance = reinterpret_cast<const float*>(at(ticket.shadow.transmittance));
     return m;
 }
@@ -333,7 +337,7 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     const double setupMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
     std::map<std::string, double> gpuMs;
-    std::vector<double> cloudSum, linearSum, displaySum, depthSum, depthWeight, skySum, layerSum;
+    std::vector<double> cloudSum, linearSum, displaySum, depthSum, depthWeight, skySum, layerSum, depthLayerSum;
     RenderResult one;
     for (uint32_t k = 0; k < frames; ++k)
     {
@@ -361,6 +365,13 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
             depthSum[i] += a * double(one.cloudDepthM[i]);
             depthWeight[i] += a;
         }
+        // The depth layer's two distances are averaged like the depth, weighted by alpha.
+        depthLayerSum.resize(one.depthLayerM.size());
+        for (size_t i = 0; i < one.depthLayerM.size(); ++i)
+        {
+            const double a = one.cloudRgbaHalf.empty() ? 1.0 : double(glm::unpackHalf1x16(one.cloudRgbaHalf[i / 2 * 4 + 3]));
+            depthLayerSum[i] += a * double(one.depthLayerM[i]);
+        }
     }
     result = std::move(one);  // the last frame's facts, march order and shadow map
     result.cpuSetupMs = setupMs;
@@ -376,6 +387,9 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
     result.cloudDepthM.resize(depthSum.size());
     for (size_t i = 0; i < depthSum.size(); ++i)
         result.cloudDepthM[i] = depthWeight[i] > 1e-6 ? float(depthSum[i] / depthWeight[i]) : 0.0f;
+    if (depthWeight.size() * 2 == depthLayerSum.size())
+        for (size_t i = 0; i < depthLayerSum.size(); ++i)
+            result.depthLayerM[i] = depthWeight[i / 2] > 1e-6 ? float(depthLayerSum[i] / depthWeight[i / 2]) : 0.0f;
     return SkyStatus::success();
 }
 

@@ -132,6 +132,7 @@ struct MappedFrame
     const uint16_t* skyRgbaHalf = nullptr;
     const uint16_t* cloudLayerRgbaHalf = nullptr;
     const float* cloudDepthM = nullptr;
+    const float* depthLayerM = nullptr;  ///< two floats a pixel (RenderResult::depthLayerM)
     const float* shadowTransmittance = nullptr;
 };
 MappedFrame mappedFrame(const Renderer& r, const FrameTicket& ticket);

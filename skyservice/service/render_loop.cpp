@@ -243,7 +243,7 @@ void RenderLoop::Impl::startFrame(uint64_t id, ViewRequest request, const SimClo
     if (layers & (1u << SKY_LAYER_CLOUDS))
         request.readback |= kReadCloudLayer;
     if (layers & (1u << SKY_LAYER_DEPTH))
-        request.readback |= kReadDepth;
+        request.readback |= kReadDepthLayer;
     if (writesFiles)
         request.readback |= kReadEverything;
     frame.request = request;
@@ -294,7 +294,7 @@ void RenderLoop::Impl::completeFrame(InFlightFrame& frame)
         if (frame.layers & (1u << SKY_LAYER_CLOUDS))
             f.layers[SKY_LAYER_CLOUDS] = pixels.cloudLayerRgbaHalf;
         if (frame.layers & (1u << SKY_LAYER_DEPTH))
-            f.layers[SKY_LAYER_DEPTH] = pixels.cloudDepthM;
+            f.layers[SKY_LAYER_DEPTH] = pixels.depthLayerM;
         if (result.shadowMapSize > 0)
         {
             f.shadowTransmittance = pixels.shadowTransmittance;

@@ -51,8 +51,9 @@ DemoTerrain twoPeaks(const SkyShmView& view)
 }
 
 // A frame whose layers are a uniform sky and a uniform deck of cloud at cloudDepthM (alpha, colour alpha *
-// kCloud); the shadow map is absent (the terrain is lit by the default mid-morning sun).
-LatestFrame deckFrame(double alpha, double cloudDepthM)
+// kCloud), its front at cloudFrontM (< 0: the same); the shadow map is absent (the terrain is lit by the
+// default mid-morning sun).
+LatestFrame deckFrame(double alpha, double cloudDepthM, double cloudFrontM = -1.0)
 {
     LatestFrame f;
     f.frameId = 1;
@@ -63,7 +64,12 @@ LatestFrame deckFrame(double alpha, double cloudDepthM)
     f.rgba.assign(4 * n, 255);
     f.skyRgba.resize(4 * n);
     f.cloudsRgba.resize(4 * n);
-    f.depthM.assign(n, alpha > 0.0 ? float(cloudDepthM) : 0.0f);
+    f.depthM.resize(2 * n);
+    for (size_t i = 0; i < n; ++i)
+    {
+        f.depthM[2 * i] = alpha > 0.0 ? float(cloudFrontM < 0.0 ? cloudDepthM : cloudFrontM) : 0.0f;
+        f.depthM[2 * i + 1] = alpha > 0.0 ? float(cloudDepthM) : 0.0f;
+    }
     for (size_t i = 0; i < n; ++i)
         for (int k = 0; k < 3; ++k)
         {
@@ -178,6 +184,20 @@ TEST(ClientDemoLayers, PeakInFrontOfTheDeckValleyBehindIt)
                                hit.distanceM < 5000.0;
             ASSERT_EQ(rgbOf(out, {x, y}) != cloud, front) << "pixel " << x << "," << y;
         }
+}
+
+// The depth layer's front decides: a deck whose front is at 2 km and whose weighted distance is at 5 km
+// hides the peak (3 km away), which the weighted distance alone would put in front of it.
+TEST(ClientDemoLayers, TerrainBehindTheCloudsFrontIsHiddenWhateverTheWeightedDistance)
+{
+    CompositeStats stats;
+    const sky::ImageRgba8 out = compositeWith(deckFrame(1.0, 5000.0, 2000.0), &stats);
+    const std::array<int, 3> cloud = displayOf(kCloud);
+    EXPECT_EQ(rgbOf(out, kPeakPixel), cloud);
+    EXPECT_EQ(rgbOf(out, kValleyPixel), cloud);
+    EXPECT_EQ(stats.terrainInFrontPixels, 0u) << "no terrain lies nearer than 2 km";
+    // The same deck with its front at the weighted distance lets the peak through.
+    EXPECT_NE(rgbOf(compositeWith(deckFrame(1.0, 5000.0)), kPeakPixel), cloud);
 }
 
 TEST(ClientDemoLayers, PartialAlphaBlendsTheValleyAndTheSky)

@@ -126,7 +126,8 @@ TEST(ServiceFrames, MatchesOneShotRender)
 }
 
 // The compositing layers a subscriber asks for (issue 20) are those of the one-shot render of the same
-// view: the clouds layer's alpha is the EXR's A (1 - transmittance) and the depth layer its Z, bit for bit;
+// view: the clouds layer's alpha is the EXR's A (1 - transmittance) and the depth layer's G its Z, its R
+// (the cloud's front) the EXR's ZFront, bit for bit, never beyond G and > 0 wherever G is;
 // the sky layer is the sky alone (where no cloud is, the display is the sky layer tone-mapped, so it is
 // not black). A subscriber without layers gets frames without them.
 TEST(ServiceFrames, LayersMatchTheOneShotRendersExr)
@@ -154,11 +155,11 @@ TEST(ServiceFrames, LayersMatchTheOneShotRendersExr)
     const SkyFrameLayer& depth = f.layers[SKY_LAYER_DEPTH];
     const SkyFrameLayer& sky = f.layers[SKY_LAYER_SKY];
     ASSERT_EQ(clouds.format, SKY_FORMAT_RGBA16F_PREMULTIPLIED);
-    ASSERT_EQ(depth.format, SKY_FORMAT_R32F_METRES);
+    ASSERT_EQ(depth.format, SKY_FORMAT_RG32F_METRES);
     ASSERT_EQ(sky.format, SKY_FORMAT_RGBA16F_LINEAR);
     ASSERT_EQ(f.layers[SKY_LAYER_DISPLAY].pixels, f.pixels);
     const size_t n = size_t(f.width) * f.height;
-    std::vector<float> alpha(n), z(n), skyRed(n);
+    std::vector<float> alpha(n), z(n), front(n), skyRed(n);
     for (uint32_t y = 0; y < f.height; ++y)
         for (uint32_t x = 0; x < f.width; ++x)
         {
@@ -167,7 +168,8 @@ TEST(ServiceFrames, LayersMatchTheOneShotRendersExr)
             std::memcpy(&r, sky.pixels + size_t(y) * sky.row_bytes + x * 8, 2);
             alpha[size_t(y) * f.width + x] = halfToFloat(a);
             skyRed[size_t(y) * f.width + x] = halfToFloat(r);
-            std::memcpy(&z[size_t(y) * f.width + x], depth.pixels + size_t(y) * depth.row_bytes + x * 4, 4);
+            std::memcpy(&front[size_t(y) * f.width + x], depth.pixels + size_t(y) * depth.row_bytes + x * 8, 4);
+            std::memcpy(&z[size_t(y) * f.width + x], depth.pixels + size_t(y) * depth.row_bytes + x * 8 + 4, 4);
         }
     ASSERT_EQ(sky_client_release_frame(c, &f), SKY_OK);
     sky_client_close(c);
@@ -177,15 +179,21 @@ TEST(ServiceFrames, LayersMatchTheOneShotRendersExr)
     sky::ExrImage exr;
     ASSERT_TRUE(sky::readExr(tmp.path + "/ref.exr", exr, error)) << error;
     ASSERT_EQ(exr.channels["A"].values.size(), n);
-    size_t cloudy = 0;
+    size_t cloudy = 0, frontNearer = 0;
     for (size_t i = 0; i < n; ++i)
     {
         ASSERT_EQ(alpha[i], exr.channels["A"].values[i]) << "alpha of pixel " << i;
         ASSERT_EQ(z[i], exr.channels["Z"].values[i]) << "depth of pixel " << i;
+        ASSERT_EQ(front[i], exr.channels["ZFront"].values[i]) << "front of pixel " << i;
+        ASSERT_LE(front[i], z[i]) << "pixel " << i;
+        ASSERT_EQ(front[i] > 0.0f, z[i] > 0.0f) << "pixel " << i;
+        // A cumulus is hundreds of metres deep: its front lies well before its weighted distance.
+        frontNearer += alpha[i] > 0.5f && front[i] < z[i] - 50.0f;
         EXPECT_GT(skyRed[i], 0.0f) << "sky of pixel " << i;
         cloudy += alpha[i] > 0.5f;
     }
     EXPECT_GT(cloudy, 0u) << "the view should hold cloud";
+    EXPECT_GT(frontNearer, cloudy / 2) << "the depth layer's front is its weighted distance: no front";
     EXPECT_EQ(d.stop(), 0);
 }
 
