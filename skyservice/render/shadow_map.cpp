@@ -285,6 +285,7 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
         if (!held)
         {
             queueImageReadback(frame, r.shadowPass.transmittance, reserved);
+            ++r.shadowPass.transmittanceCopies;
             frame.shadowMapIdHeld = drawn.id;
             frame.shadowMapHeldOffset = reserved.offset;
         }

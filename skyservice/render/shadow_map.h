@@ -122,6 +122,7 @@ struct ShadowMapPass
     Image image;  ///< rgba16f (transmittance, optical depth), sizeTexels^2, GENERAL; (re)made with the size
     Image transmittance;  ///< r32f: the transmittance as readers take it (blitted from `image`)
     ShadowMapDrawing drawn;  ///< what `image` and `transmittance` hold
+    uint64_t transmittanceCopies = 0;  ///< copies of `transmittance` to a readback buffer (tests)
 };
 
 /// Where a frame's shadow map lies in its readback buffer.

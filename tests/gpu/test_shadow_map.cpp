@@ -335,6 +335,16 @@ TEST_F(ShadowMap, IsReusedUntilANewDrawingWouldDiffer)
     EXPECT_DOUBLE_EQ(double(nearby.shadowMap["centre"]["latDeg"]), kEyeLatDeg) << "the drawing's own centre";
     EXPECT_DOUBLE_EQ(nearby.shadowReference.centreLatDeg, kEyeLatDeg);
 
+    // A reused map is copied to the host once per frame context, not every frame; every frame has its texels.
+    const uint64_t copiesBefore = renderer->shadowPass.transmittanceCopies;
+    for (uint32_t k = 0; k < 2 * kFramesInFlight; ++k)
+    {
+        const RenderResult reused = frame(0.0, noon, q);
+        EXPECT_EQ(reused.shadowMapId, first.shadowMapId);
+        EXPECT_EQ(reused.shadowTransmittance, first.shadowTransmittance) << "frame " << k;
+    }
+    EXPECT_LE(renderer->shadowPass.transmittanceCopies - copiesBefore, uint64_t(kFramesInFlight));
+
     const RenderResult moved = frame(2000.0, noon, q);
     EXPECT_TRUE(moved.shadowMapRedrawn);
     EXPECT_EQ(moved.shadowMapId, first.shadowMapId + 1);
