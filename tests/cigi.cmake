@@ -33,3 +33,12 @@ if(TARGET sky_cigi AND TARGET sky_service)
     target_link_libraries(test_cigi_service PRIVATE sky_service sky_cigi GTest::gtest_main sky_warnings)
     gtest_discover_tests(test_cigi_service TEST_PREFIX "cigi." DISCOVERY_TIMEOUT 30 PROPERTIES LABELS cpu)
 endif()
+
+# On the GPU (lavapipe): a fade of the host's weather, staged step by step through the weather schedule, keeps
+# the renderer's reprojection history; a new snapshot drops it.
+if(TARGET sky_cigi AND TARGET sky_service)
+    add_executable(test_cigi_history ${SKY_CIGI_TEST_DIR}/cigi_history_gpu_test.cpp ${CMAKE_CURRENT_LIST_DIR}/gpu/scenes.cpp)
+    target_include_directories(test_cigi_history PRIVATE ${SKY_CIGI_TEST_DIR} ${PROJECT_SOURCE_DIR})
+    target_link_libraries(test_cigi_history PRIVATE sky_service sky_cigi GTest::gtest_main sky_warnings)
+    gtest_discover_tests(test_cigi_history TEST_PREFIX "cigi." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+endif()
