@@ -76,16 +76,17 @@ void setWeather(Renderer& r, const WeatherSnapshot& snapshot)
     dropHistory(r);  // the previous frame shows other clouds
 }
 
-uint64_t stageWeather(Renderer& r, WeatherMaker make, StageSwap swap)
+uint64_t stageWeather(Renderer& r, WeatherMaker make, StageSwap swap, StageHistory history)
 {
     const uint64_t version = ++r.weather.versionsIssued;
-    stage(r.weather.stage, version, std::move(make), swap);
+    stage(r.weather.stage, version, std::move(make), swap, history);
     return version;
 }
 
-uint64_t stageWeather(Renderer& r, std::shared_ptr<const WeatherSnapshot> snapshot, StageSwap swap)
+uint64_t stageWeather(Renderer& r, std::shared_ptr<const WeatherSnapshot> snapshot, StageSwap swap,
+                      StageHistory history)
 {
-    return stageWeather(r, [snapshot = std::move(snapshot)] { return snapshot; }, swap);
+    return stageWeather(r, [snapshot = std::move(snapshot)] { return snapshot; }, swap, history);
 }
 
 void releaseStagedWeather(Renderer& r) { releaseStage(r.weather.stage); }
@@ -94,7 +95,11 @@ void cancelStagedWeather(Renderer& r) { cancelStage(r.weather.stage); }
 
 bool weatherStagePending(const Renderer& r) { return stagePending(r.weather.stage); }
 
-void dropHistory(Renderer& r) { r.reconstruct.reprojection.valid = false; }
+void dropHistory(Renderer& r)
+{
+    r.reconstruct.reprojection.valid = false;
+    ++r.reconstruct.reprojection.drops;
+}
 
 const std::string& lastHistoryDropReason(const Renderer& r) { return r.reconstruct.reprojection.lastDropReason; }
 

@@ -91,12 +91,14 @@ void setWeather(Renderer& r, const WeatherSnapshot& snapshot);
 /// Stages a new weather (weather_stage.h): its snapshot is made by `make` (or given), validated and its
 /// window prepared on a worker thread while frames keep drawing the current weather; the first frame
 /// after that (and after releaseStagedWeather with StageSwap::WhenReleased) draws it and drops the
-/// reprojection history. A newer stage replaces one not swapped in yet; a bad weather is dropped (the
-/// current one stays; weather.stage.lastError says why). With no weather drawn yet, the next frame waits
-/// for it. Returns the version the weather will have (RenderResult::weatherVersion).
-uint64_t stageWeather(Renderer& r, WeatherMaker make, StageSwap swap = StageSwap::WhenReady);
+/// reprojection history (with StageHistory::Keep, a small step such as a fade step, it keeps it). A newer
+/// stage replaces one not swapped in yet; a bad weather is dropped (the current one stays;
+/// weather.stage.lastError says why). With no weather drawn yet, the next frame waits for it. Returns the
+/// version the weather will have (RenderResult::weatherVersion).
+uint64_t stageWeather(Renderer& r, WeatherMaker make, StageSwap swap = StageSwap::WhenReady,
+                      StageHistory history = StageHistory::Drop);
 uint64_t stageWeather(Renderer& r, std::shared_ptr<const WeatherSnapshot> snapshot,
-                      StageSwap swap = StageSwap::WhenReady);
+                      StageSwap swap = StageSwap::WhenReady, StageHistory history = StageHistory::Drop);
 /// Lets a weather staged with StageSwap::WhenReleased swap in at the first frame it is ready for.
 void releaseStagedWeather(Renderer& r);
 /// Forgets the staged weather (a job under way finishes on the worker; its result is dropped).
@@ -106,7 +108,7 @@ bool weatherStagePending(const Renderer& r);
 
 /// Forgets the reprojection history: the next reprojected frame uses fresh pixels only (teleport,
 /// weather swap, time jump). setWeather does this too; large moves, turns and time jumps do it
-/// automatically (limits in reprojection.h).
+/// automatically (limits in reprojection.h). Counted in reconstruct.reprojection.drops.
 void dropHistory(Renderer& r);
 
 /// Renders one view and reads back the images request.readback asks for: submitView then finishView. With

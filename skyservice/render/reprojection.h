@@ -59,6 +59,7 @@ struct ReprojectionHistory
     bool valid = false;          ///< the history images hold the last reprojected frame of `lastView`
     uint32_t frameIndex = 0;     ///< reprojected frames since the renderer was created (picks the phase)
     uint32_t current = 0;        ///< which of the two history images the last frame wrote
+    uint64_t drops = 0;          ///< dropHistory calls (weather swaps, jumps): a small staged step makes none
     ViewRequest lastView;        ///< the view of the last reprojected frame
     CameraFrame lastCamera;      ///< its camera, in double
     std::string lastDropReason;  ///< why the last reprojected frame did not use history ("" if it did)

@@ -54,6 +54,7 @@ void forgetStaged(WeatherStage& s)
 {
     s.version = 0;
     s.held = false;
+    s.keepHistory = false;
     s.make = nullptr;
     s.weather.reset();
     s.ready.reset();
@@ -61,9 +62,11 @@ void forgetStaged(WeatherStage& s)
 
 }  // namespace
 
-void stage(WeatherStage& s, uint64_t version, WeatherMaker make, StageSwap swap)
+void stage(WeatherStage& s, uint64_t version, WeatherMaker make, StageSwap swap, StageHistory history)
 {
+    const bool keep = history == StageHistory::Keep && (!stagePending(s) || s.keepHistory);
     forgetStaged(s);
+    s.keepHistory = keep;
     s.version = version;
     s.held = swap == StageSwap::WhenReleased;
     s.make = std::move(make);
@@ -106,7 +109,7 @@ std::optional<StagedResult> advanceStage(WeatherStage& s, WeatherWorker& worker,
             s.ready.reset();  // the eye went to another cell meanwhile: the window alone is made again
         if (s.ready && (!s.held || wait))
         {
-            StagedResult out{s.version, s.weather, s.ready, ""};
+            StagedResult out{s.version, s.weather, s.ready, "", s.keepHistory};
             forgetStaged(s);
             s.lastError.clear();
             ++s.swapped;

@@ -3,8 +3,11 @@
 //
 // setWeather makes the next frame resample the whole window on the frame path (17-85 ms). A staged
 // weather instead gets its snapshot made (e.g. a timeline sampled), validated and its window resampled
-// for the eye's lattice node on the weather worker (weather_worker.h), while frames go on drawing the old weather; the first
-// frame after the job finished swaps it in (and drops the reprojection history, as setWeather does).
+// for the eye's lattice node on the weather worker (weather_worker.h), while frames go on drawing the old
+// weather; the first frame after the job finished swaps it in and drops the reprojection history, as
+// setWeather does, unless it was staged as a small step (StageHistory::Keep: a weather fading in, a step
+// every fraction of a second, differs so little from the last that the reconstruct pass's colour clamp
+// follows it; dropping the history at every step would leave the image re-sharpening over 16 frames after each).
 // That frame renders exactly what a one-shot render with the new weather renders: its window is the one
 // of its pose's node, made from the same snapshot (window_provider.h: the texels depend on the key only).
 //
@@ -39,6 +42,13 @@ namespace sky
 /// sample from several threads: sample() is const and the service never changes a loaded timeline).
 using WeatherMaker = std::function<std::shared_ptr<const WeatherSnapshot>()>;
 
+/// Whether the swap of a staged weather drops the reprojection history.
+enum class StageHistory
+{
+    Drop,  ///< a new weather: the previous frame shows other clouds
+    Keep,  ///< a small step from the weather drawn (a fade step): the history still matches it closely
+};
+
 enum class StageSwap
 {
     WhenReady,     ///< the first frame after the window is ready
@@ -52,6 +62,7 @@ struct StagedResult
     std::shared_ptr<const WeatherSnapshot> weather;
     std::shared_ptr<const PreparedWindow> window;
     std::string error;  ///< why the weather was refused ("" = good)
+    bool keepHistory = false;  ///< StageHistory::Keep, and every stage it replaced unswapped was Keep too
 };
 
 /// The newest staged weather, the job in flight, and counts for tests and the service's status.
@@ -59,6 +70,9 @@ struct WeatherStage
 {
     uint64_t version = 0;  ///< version of the staged weather (0: none staged)
     bool held = false;     ///< StageSwap::WhenReleased and not released yet
+    /// StageHistory::Keep and so was every stage it replaced before they swapped in: the frames still draw
+    /// the weather before those, so a small step over a replaced big one is a big change.
+    bool keepHistory = false;
     WeatherMaker make;     ///< until a job took it
     std::shared_ptr<const WeatherSnapshot> weather;  ///< once made and valid
     std::shared_ptr<const PreparedWindow> ready;     ///< its window, for ready->key
@@ -73,7 +87,8 @@ struct WeatherStage
 };
 
 /// Stages a weather as `version` (replacing one staged before and not swapped in yet).
-void stage(WeatherStage& s, uint64_t version, WeatherMaker make, StageSwap swap);
+void stage(WeatherStage& s, uint64_t version, WeatherMaker make, StageSwap swap,
+           StageHistory history = StageHistory::Drop);
 /// Lets a held staged weather swap in (nothing when none is staged).
 void releaseStage(WeatherStage& s);
 /// Forgets the staged weather (a running job finishes on its own; its result is dropped).

@@ -20,7 +20,8 @@ SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const Qual
         w.version = staged->version;
         w.window = staged->window;
         w.windowOnGpu = false;
-        dropHistory(r);  // the previous frame shows other clouds
+        if (!staged->keepHistory)
+            dropHistory(r);  // the previous frame shows other clouds (a small step's still matches them)
         key.weatherVersion = w.version;
     }
     if (!w.snapshot)

@@ -2,6 +2,7 @@
 #include "skyservice/service/cigi_apply.h"
 
 #include "skyservice/service/cigi_view.h"
+#include "skyservice/service/cigi_weather_merge.h"
 #include "skyservice/service/log.h"
 #include "skyservice/service/weather_schedule.h"
 
@@ -43,13 +44,12 @@ double CigiApplier::nowS() const
     return std::chrono::duration<double>(SteadyClock::now() - epoch_).count();
 }
 
-std::shared_ptr<const WeatherTimeline> CigiApplier::weatherIfChanged(const cigi::CigiState& state, double ownLatDeg,
-                                                                     double ownLonDeg, double simTimeS, double nowS,
-                                                                     bool stepDrawn)
+CigiApplier::Built CigiApplier::weatherIfChanged(const cigi::CigiState& state, double ownLatDeg, double ownLonDeg,
+                                                 double simTimeS, double nowS, bool stepDrawn, bool overGridded)
 {
     const bool changed = fade_.setTarget(state, nowS);
     if (!fade_.started())
-        return nullptr; // the configured weather stays until the host sets a cloud layer
+        return {}; // the configured weather stays until the host sets a cloud layer
     const bool fading = fade_.fading(nowS);
     if (changed && fading && !lastBuildFading_)
     {
@@ -62,51 +62,79 @@ std::shared_ptr<const WeatherTimeline> CigiApplier::weatherIfChanged(const cigi:
                          roughDistanceM(weatherGrid_.centreLatDeg, weatherGrid_.centreLonDeg, ownLatDeg, ownLonDeg) >
                              0.25 * weatherGrid_.halfExtentM;
     const bool stepDue = lastBuildFading_ && stepDrawn && nowS - lastBuildS_ >= kCigiFadeStepS;
-    if (weatherBuilt_ && !drifted && !(changed && !fading) && !stepDue)
-        return nullptr;
-    CigiWeatherGrid grid = cigiWeatherGrid(fade_, ownLatDeg, ownLonDeg);
-    auto timeline = std::make_shared<WeatherTimeline>();
-    std::string error;
-    if (!timeline->setSnapshots({cigiWeatherSnapshot(fade_, nowS, grid, geoid_, int64_t(std::floor(simTimeS)))}, error))
+    const bool modeChanged = weatherBuilt_ && overGridded != builtOverGridded_; // a file loaded or dropped
+    if (weatherBuilt_ && !drifted && !(changed && !fading) && !stepDue && !modeChanged)
+        return {};
+    Built built;
+    built.smallStep = weatherBuilt_ && lastBuildFading_ && !drifted && !(changed && !fading) && !modeChanged;
+    CigiWeatherGrid grid = cigiWeatherGrid(fade_, ownLatDeg, ownLonDeg, overGridded);
+    if (overGridded)
+        built.overlay = std::make_shared<const CigiOverlay>(fade_, nowS, grid, geoid_, ownLatDeg, ownLonDeg);
+    else
     {
-        report(kWeather, true, "the host's weather was not drawn: " + error);
-        return nullptr;
+        auto timeline = std::make_shared<WeatherTimeline>();
+        std::string error;
+        if (!timeline->setSnapshots({cigiWeatherSnapshot(fade_, nowS, grid, *geoid_, int64_t(std::floor(simTimeS)))},
+                                    error))
+        {
+            report(kWeather, true, "the host's weather was not drawn: " + error);
+            return {};
+        }
+        built.timeline = std::move(timeline);
     }
     report(kWeather, false, "");
     weatherGrid_ = grid;
     weatherBuilt_ = true;
+    builtOverGridded_ = overGridded;
     fadeSteps_ += lastBuildFading_ ? 1 : 0;
     lastBuildFading_ = fading;
     lastBuildS_ = nowS;
     ++weatherBuilds_;
     // The first at info; later ones at debug: a host that ramps a layer changes it every frame.
-    logMessage(weatherBuilds_ == 1 ? LogLevel::Info : LogLevel::Debug,
-               "cigi: weather from the host: %zu cloud layer(s)%s on a %ux%u grid%s",
-               timeline->snapshot(0).layers.size(), timeline->snapshot(0).high.coverage.empty() ? "" : " + high cloud",
-               grid.grid.nLat, grid.grid.nLon, fading ? " (fading in)" : "");
-    return timeline;
+    if (overGridded)
+        logMessage(weatherBuilds_ == 1 ? LogLevel::Info : LogLevel::Debug,
+                   "cigi: weather from the host laid over the gridded weather%s%s",
+                   grid.regional ? " (regions on a grid around the ownship)" : "", fading ? " (fading in)" : "");
+    else
+        logMessage(weatherBuilds_ == 1 ? LogLevel::Info : LogLevel::Debug,
+                   "cigi: weather from the host: %zu cloud layer(s)%s on a %ux%u grid%s",
+                   built.timeline->snapshot(0).layers.size(),
+                   built.timeline->snapshot(0).high.coverage.empty() ? "" : " + high cloud", grid.grid.nLat,
+                   grid.grid.nLon, fading ? " (fading in)" : "");
+    return built;
 }
 
-std::shared_ptr<const WeatherTimeline> CigiApplier::weatherFor(const cigi::CigiState& state, ServiceState& s,
-                                                               const EyePose* pose, double nowS)
+CigiApplier::Built CigiApplier::weatherFor(const cigi::CigiState& state, ServiceState& s, const EyePose* pose,
+                                           double nowS)
 {
     double ownLat = 0, ownLon = 0, simTimeS = 0;
-    bool stepDrawn = false;
+    bool stepDrawn = false, overGridded = false;
     {
         std::lock_guard<std::mutex> lock(s.mutex);
         ownLat = pose ? pose->latDeg : s.view.pose.latDeg;
         ownLon = pose ? pose->lonDeg : s.view.pose.lonDeg;
         simTimeS = s.clock.nowUnixS();
         stepDrawn = s.frameWeather.known && s.frameWeather.version >= publishedVersion_;
+        overGridded = s.weather.timeline && s.weather.timeline != ownTimeline_;
     }
-    return weatherIfChanged(state, ownLat, ownLon, simTimeS, nowS, stepDrawn);
+    return weatherIfChanged(state, ownLat, ownLon, simTimeS, nowS, stepDrawn, overGridded);
 }
 
-void CigiApplier::install(ServiceState& s, std::shared_ptr<const WeatherTimeline> weather)
+void CigiApplier::install(ServiceState& s, Built weather)
 {
-    s.weather.timeline = std::move(weather);
-    s.weather.source = "cigi";
-    s.weather.lastError.clear();
+    // A file loaded since the build (or ours replaced): drawn as built, but not as a small step from it.
+    const bool small = weather.smallStep && s.weather.version == publishedVersion_;
+    if (weather.overlay)
+        s.weather.overlay = std::move(weather.overlay); // over the file, whose source and timeline stay
+    else
+    {
+        ownTimeline_ = weather.timeline;
+        s.weather.timeline = std::move(weather.timeline);
+        s.weather.overlay.reset();
+        s.weather.source = "cigi";
+        s.weather.lastError.clear();
+    }
+    s.weather.smallStepFrom = small ? s.weather.version : 0;
     publishedVersion_ = ++s.weather.version;
 }
 
@@ -119,7 +147,7 @@ void CigiApplier::tick(const cigi::CigiState& state, ServiceState& s, double now
 {
     if (!lastBuildFading_ || nowS - lastBuildS_ < kCigiFadeStepS)
         return;
-    std::shared_ptr<const WeatherTimeline> weather = weatherFor(state, s, nullptr, nowS);
+    Built weather = weatherFor(state, s, nullptr, nowS);
     if (!weather)
         return;
     {
@@ -162,7 +190,7 @@ void CigiApplier::applyAir(const cigi::CigiState& state, ServiceState& s)
     if (fog == state.globalLayers.end() || !fog->second.enabled || !(fog->second.thicknessM > 0) ||
         !(fog->second.visibilityM > 0))
         return;
-    const double n = geoid_.undulationM(s.view.pose.latDeg, s.view.pose.lonDeg);
+    const double n = geoid_->undulationM(s.view.pose.latDeg, s.view.pose.lonDeg);
     const double undulationM = std::isfinite(n) ? n : 0.0;
     s.view.fogBaseM = double(fog->second.baseElevationMslM) + undulationM;
     s.view.fogTopM = s.view.fogBaseM + double(fog->second.thicknessM);
@@ -184,14 +212,14 @@ void CigiApplier::apply(const cigi::CigiState& state, const cigi::DecodeResult& 
     const cigi::ViewState* control = view != state.views.end() && view->second.controlled ? &view->second : nullptr;
     EyePose pose;
     std::string poseWhy, viewWhy;
-    const bool havePose = state.ownship.valid && cigiEyePose(state.ownship, control, geoid_, pose, poseWhy);
+    const bool havePose = state.ownship.valid && cigiEyePose(state.ownship, control, *geoid_, pose, poseWhy);
     report(kPose, state.ownship.valid && !havePose, "ownship pose not applied: " + poseWhy);
     Frustum frustum;
     double fovYDeg = 0;
     const bool haveFrustum = defined && cigiFrustum(view->second, frustum, fovYDeg, viewWhy);
     report(kView, defined && !haveFrustum, "view not applied: " + viewWhy);
 
-    std::shared_ptr<const WeatherTimeline> weather = weatherFor(state, s, havePose ? &pose : nullptr, nowS);
+    Built weather = weatherFor(state, s, havePose ? &pose : nullptr, nowS);
 
     {
         std::lock_guard<std::mutex> lock(s.mutex);
@@ -220,6 +248,7 @@ nlohmann::json CigiApplier::statusJson() const
             {"fade_steps", fadeSteps_},
             {"fading", lastBuildFading_},
             {"regional_grid", weatherGrid_.regional},
+            {"over_gridded", builtOverGridded_},
             {"frustum_applied", frustumApplied_},
             {"pose_error", problems_[kPose].empty() ? nlohmann::json() : nlohmann::json(problems_[kPose])},
             {"view_error", problems_[kView].empty() ? nlohmann::json() : nlohmann::json(problems_[kView])},

@@ -4,13 +4,18 @@
 // one-snapshot weather timeline (source "cigi") swapped in through WeatherState, so the render loop stages
 // it off the frame path (weather_schedule.h) and draws it from the first frame after it is ready.
 //
-// A change of the host's weather fades in (cigi_weather_fade.h): while a fade is under way the snapshot of
-// what is drawn is remade every kCigiFadeStepS of IG time and swapped in like any other, the next step only
-// once the frames draw the last one (a step's window is made on the worker thread; staging faster than that
-// would only replace steps never drawn). Each swap drops the renderer's reprojection history, as every
-// weather swap does: the frame after a step marches its fresh pixels without history and sharpens over the
-// next 16 frames, so during a fade the clouds' fine detail is a little softer (the renderer has no blend of
-// two weathers within a frame, and a smaller step would only drop the history more often).
+// With a gridded weather loaded (a file: WeatherState::timeline that is not this applier's own) the host's
+// weather is not a timeline of its own but a WeatherOverlay laid over each of the file's samples
+// (cigi_weather_merge.h): the file stays the global weather except where the host sets global layers, and
+// the regions blend into it. Without one (the built-in scene) the host's weather replaces it, as a
+// one-snapshot timeline. Which of the two is redecided with every datagram (a file loaded or dropped).
+//
+// A change of the host's weather fades in (cigi_weather_fade.h): while a fade is under way the snapshot (or
+// overlay) of what is drawn is remade every kCigiFadeStepS of IG time and swapped in like any other, the
+// next step only once the frames draw the last one (a step's window is made on the worker thread; staging
+// faster than that would only replace steps never drawn). A step is published as a small step
+// (WeatherState::smallStepFrom), so the renderer keeps its reprojection history across it: the reconstruct
+// pass's colour clamp follows clouds that change this little. Any other new weather drops the history.
 //
 // One host datagram is one consistent update: everything it changes lands under one lock of
 // ServiceState's mutex, so a frame never draws half of it. The snapshot is built before that lock (and
@@ -40,8 +45,12 @@ inline constexpr double kCigiFadeStepS = 0.25;
 class CigiApplier
 {
   public:
-    /// `geoid` must outlive the applier (an empty grid: altitudes taken as ellipsoid heights).
-    CigiApplier(uint16_t viewId, const cigi::GeoidGrid& geoid) : viewId_(viewId), geoid_(geoid) {}
+    /// `geoid` is copied (an empty grid: altitudes taken as ellipsoid heights): overlays share it with the
+    /// renderer's worker thread.
+    CigiApplier(uint16_t viewId, const cigi::GeoidGrid& geoid)
+        : viewId_(viewId), geoid_(std::make_shared<const cigi::GeoidGrid>(geoid))
+    {
+    }
 
     /// After `datagram` was applied to `state`: updates `service` (taking its mutex). With render rate 0
     /// every accepted datagram asks for one frame: the host paces the IG.
@@ -66,16 +75,23 @@ class CigiApplier
     void applyTime(const cigi::CigiState& state, ServiceState& service);
     /// Atmosphere Control's visibility and the global ground fog (layer 0) as the frame's haze and fog.
     void applyAir(const cigi::CigiState& state, ServiceState& service);
-    /// Builds the snapshot when what is drawn changed or a fade step is due; null when nothing is to be
-    /// swapped in. `stepDrawn`: the frames draw the last snapshot published.
-    std::shared_ptr<const WeatherTimeline> weatherIfChanged(const cigi::CigiState& state, double ownLatDeg,
-                                                            double ownLonDeg, double simTimeS, double nowS,
-                                                            bool stepDrawn);
+    /// What a build made: the host's weather as its own timeline, or as an overlay over a gridded weather.
+    struct Built
+    {
+        std::shared_ptr<const WeatherTimeline> timeline;
+        std::shared_ptr<const WeatherOverlay> overlay;
+        bool smallStep = false; ///< a step of a fade under way: a small change from the last one published
+        explicit operator bool() const { return timeline || overlay; }
+    };
+    /// Builds the snapshot when what is drawn changed or a fade step is due; empty when nothing is to be
+    /// swapped in. `stepDrawn`: the frames draw the last snapshot published. `overGridded`: a gridded weather
+    /// is loaded (an overlay is built).
+    Built weatherIfChanged(const cigi::CigiState& state, double ownLatDeg, double ownLonDeg, double simTimeS,
+                           double nowS, bool stepDrawn, bool overGridded);
     /// weatherIfChanged with the ownship (pose, or the service's eye when null) and the service's clock.
-    std::shared_ptr<const WeatherTimeline> weatherFor(const cigi::CigiState& state, ServiceState& service,
-                                                      const EyePose* pose, double nowS);
+    Built weatherFor(const cigi::CigiState& state, ServiceState& service, const EyePose* pose, double nowS);
     /// Caller holds service.mutex.
-    void install(ServiceState& service, std::shared_ptr<const WeatherTimeline> weather);
+    void install(ServiceState& service, Built weather);
     /// What can fail when applying: each is logged when it starts failing, not again until it has worked.
     enum Problem
     {
@@ -87,11 +103,13 @@ class CigiApplier
     void report(Problem problem, bool failed, const std::string& message);
 
     uint16_t viewId_;
-    const cigi::GeoidGrid& geoid_;
+    std::shared_ptr<const cigi::GeoidGrid> geoid_;
     SteadyClock::time_point epoch_ = SteadyClock::now();
     CigiWeatherFade fade_;
     CigiWeatherGrid weatherGrid_;
     bool weatherBuilt_ = false;
+    bool builtOverGridded_ = false;                       ///< the last build was an overlay
+    std::shared_ptr<const WeatherTimeline> ownTimeline_; ///< the last timeline of our own published
     bool lastBuildFading_ = false;  ///< the last snapshot built was a fade step: more are to come
     double lastBuildS_ = 0;         ///< IG time of the last snapshot built (or of the change a fade began with)
     uint64_t publishedVersion_ = 0; ///< WeatherState::version of the last snapshot swapped in

@@ -52,6 +52,11 @@ double wrapDeg(double deg)
 
 } // namespace
 
+bool cigiHighCloudType(uint8_t type)
+{
+    return highType(type);
+}
+
 CigiCloudAt cigiLayerFromHost(const WeatherLayer& l)
 {
     CigiCloudAt c;
@@ -164,7 +169,7 @@ CigiWeatherGrid cigiWeatherGrid(const CigiState& state, double ownLatDeg, double
     return cigiWeatherGrid(asSet, ownLatDeg, ownLonDeg);
 }
 
-CigiWeatherGrid cigiWeatherGrid(const CigiWeatherFade& fade, double ownLatDeg, double ownLonDeg)
+CigiWeatherGrid cigiWeatherGrid(const CigiWeatherFade& fade, double ownLatDeg, double ownLonDeg, bool overGridded)
 {
     CigiWeatherGrid g;
     double spacingM = std::numeric_limits<double>::infinity();
@@ -181,6 +186,8 @@ CigiWeatherGrid cigiWeatherGrid(const CigiWeatherFade& fade, double ownLatDeg, d
         g.grid = LatLonGrid{-90.0, -180.0, 1.0, 1.0, 181, 360};
         return g;
     }
+    if (overGridded)
+        spacingM = std::max(spacingM, kMaxRegionalHalfExtentM / kMaxRegionalCellsFromCentre);
     spacingM = std::clamp(spacingM, kMinRegionalSpacingM, kMaxRegionalSpacingM);
     const double cells = std::floor(std::min(kMaxRegionalCellsFromCentre, kMaxRegionalHalfExtentM / spacingM));
     g.regional = true;

@@ -49,6 +49,9 @@ bool cigiHasCloudWeather(const cigi::CigiState& state);
 /// fades in is CigiWeatherFade::cloudsAt).
 CigiCloudsAt cigiCloudsAt(const cigi::CigiState& state, double latDeg, double lonDeg);
 
+/// Cirrocumulus, cirrostratus, cirrus: drawn in the snapshot's high (2D) cloud layer.
+bool cigiHighCloudType(uint8_t type);
+
 /// A host's Weather Control layer at a point where it applies (coverage 0 when it draws nothing).
 CigiCloudAt cigiLayerFromHost(const cigi::WeatherLayer& layer);
 
@@ -80,8 +83,11 @@ struct CigiWeatherGrid
     double centreLatDeg = 0, centreLonDeg = 0; ///< regional: the ownship when it was made
     double halfExtentM = 0;                    ///< regional: distance from the centre to the grid's edge
 };
-/// ... for the regions a fade still draws (fading out ones included).
-CigiWeatherGrid cigiWeatherGrid(const CigiWeatherFade& fade, double ownLatDeg, double ownLonDeg);
+/// ... for the regions a fade still draws (fading out ones included). `overGridded`: laid over a gridded
+/// weather (cigi_weather_merge.h), whose clouds must still reach the renderer's whole weather window: the
+/// regional grid then spans that window (800 km from the ownship), its cells no finer than 4 km.
+CigiWeatherGrid cigiWeatherGrid(const CigiWeatherFade& fade, double ownLatDeg, double ownLonDeg,
+                                bool overGridded = false);
 CigiWeatherGrid cigiWeatherGrid(const cigi::CigiState& state, double ownLatDeg, double ownLonDeg);
 
 /// The snapshot of the host's weather drawn at IG time nowS on `grid`, valid at `validTimeUnixS`.

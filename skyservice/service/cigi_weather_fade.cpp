@@ -60,18 +60,33 @@ bool retarget(CigiFadingLayer& layer, const CigiCloudAt& to, double nowS, bool i
     return true;
 }
 
-/// The layer drawn over `under` with weight w (1 for the global layers, the region's weight for a region).
-CigiCloudAt drawn(const CigiFadingLayer& layer, const CigiCloudAt& under, float w, double nowS)
+CigiCloudAt raised(CigiCloudAt c, float undulationM)
+{
+    c.baseMslM += undulationM;
+    c.topMslM += undulationM;
+    return c;
+}
+
+/// A host layer blends in: it is set, and over a gridded weather a global layer without cloud is no layer.
+bool blends(const CigiCloudAt& c, bool emptyIsNone)
+{
+    return c.set && !(emptyIsNone && c.coverage <= 0);
+}
+
+/// The layer drawn over `under` with weight w (1 for the global layers, the region's weight for a region);
+/// the host's altitudes raised by undulationM (cloudsOver).
+CigiCloudAt drawn(const CigiFadingLayer& layer, const CigiCloudAt& under, float w, double nowS,
+                  bool emptyIsNone = false, float undulationM = 0.0f)
 {
     CigiCloudAt from = under;
-    if (layer.from.set)
-        cigiBlendLayer(from, layer.from, w * layer.fromWeight);
+    if (blends(layer.from, emptyIsNone))
+        cigiBlendLayer(from, raised(layer.from, undulationM), w * layer.fromWeight);
     const float f = cigiFadeFraction(layer.startS, nowS);
     if (f <= 0)
         return from;
     CigiCloudAt to = under;
-    if (layer.to.set)
-        cigiBlendLayer(to, layer.to, w);
+    if (blends(layer.to, emptyIsNone))
+        cigiBlendLayer(to, raised(layer.to, undulationM), w);
     if (f >= 1)
         return to;
     if (!to.set) // nothing under and nothing set: what was drawn fades out
@@ -188,6 +203,50 @@ CigiCloudsAt CigiWeatherFade::cloudsAt(double latDeg, double lonDeg, double nowS
         covered = true;
     }
     return out;
+}
+
+CigiCloudsAt CigiWeatherFade::cloudsOver(const CigiCloudsAt& under, double latDeg, double lonDeg, double nowS,
+                                         float undulationM) const
+{
+    CigiCloudsAt out;
+    for (uint8_t i = 0; i < 3; ++i)
+        out[i] = drawn(global_[i], under[i], 1.0f, nowS, true, undulationM);
+    for (const auto& [id, r] : regions_)
+    {
+        const float presence = r.presence.at(nowS);
+        if (presence <= 0)
+            continue;
+        const double w = cigiRegionWeight(r.shape, latDeg, lonDeg);
+        if (w <= 0)
+            continue;
+        // The gridded weather is always beneath: Merge Weather averages with it (or with what is over it).
+        const float t = float(w) * presence * (r.shape.mergeWeather ? 0.5f : 1.0f);
+        for (size_t i = 0; i < 3; ++i)
+            out[i] = drawn(r.layers[i], out[i], t, nowS, false, undulationM);
+    }
+    return out;
+}
+
+bool CigiWeatherFade::layerExtent(uint8_t layerId, CigiCloudAt& out) const
+{
+    if (layerId < 1 || layerId > 3)
+        return false;
+    auto pick = [&out](const CigiFadingLayer& l, bool needCloud)
+    {
+        for (const CigiCloudAt* c : {&l.to, &l.from})
+            if (c->set && (!needCloud || c->coverage > 0))
+            {
+                out = *c;
+                return true;
+            }
+        return false;
+    };
+    if (pick(global_[layerId - 1], true))
+        return true;
+    for (const auto& [id, r] : regions_)
+        if (pick(r.layers[layerId - 1], false))
+            return true;
+    return false;
 }
 
 } // namespace sky

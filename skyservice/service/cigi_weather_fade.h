@@ -69,6 +69,18 @@ class CigiWeatherFade
     bool fading(double nowS) const;
     /// The cloud layers drawn at a point at nowS.
     CigiCloudsAt cloudsAt(double latDeg, double lonDeg, double nowS) const;
+    /// The cloud layers drawn at a point at nowS over a gridded weather (cigi_weather_merge.h): `under` holds,
+    /// for each host layer, the gridded layer of the slot it was matched to (set = false where there is no
+    /// cloud), in metres above the ellipsoid. A global host layer replaces it (one that draws no cloud is no
+    /// layer: the gridded one stays); a region replaces what is beneath it ("use last") or, with Merge Weather,
+    /// averages with it (weight 1/2), over its transition perimeter as ever. The host's altitudes (above mean
+    /// sea level) are raised by `undulationM`, so every altitude out is above the ellipsoid.
+    CigiCloudsAt cloudsOver(const CigiCloudsAt& under, double latDeg, double lonDeg, double nowS,
+                            float undulationM) const;
+    /// Where host layer `layerId` (1-3) lies, for matching it with a gridded layer: the global layer when it
+    /// draws cloud, else the first region's that sets it (what the host set, or what it fades from). False
+    /// when no global or regional layer of that id is set.
+    bool layerExtent(uint8_t layerId, CigiCloudAt& out) const;
     /// Regions still drawn or fading, by id.
     const std::map<uint16_t, CigiFadingRegion>& regions() const { return regions_; }
 

@@ -4,6 +4,7 @@
 #include "skyservice/earth/geodesy.h"
 #include "skyservice/render/view_frustum.h"
 #include "skyservice/service/log.h"
+#include "skyservice/service/weather_schedule.h"
 #include "skyservice/sky/ephemeris.h"
 
 #include <algorithm>
@@ -374,7 +375,7 @@ nlohmann::json ControlLoop::statusJson()
         cigi["frustum"] = {{"asymmetric", s.view.frustum.asymmetric}, {"left", s.view.frustum.leftDeg},
                            {"right", s.view.frustum.rightDeg},        {"up", s.view.frustum.upDeg},
                            {"down", s.view.frustum.downDeg}};
-    nlohmann::json weather = {{"source", s.weather.source}, {"valid_time", nullptr}, {"last_error", nullptr}};
+    nlohmann::json weather = {{"source", weatherName(s.weather)}, {"valid_time", nullptr}, {"last_error", nullptr}};
     if (s.weather.timeline && !s.weather.timeline->empty())
     {
         weather["valid_time"] = formatIso8601Utc(s.weather.timeline->firstTimeUnixS());

@@ -40,12 +40,30 @@ struct SimClock
     }
 };
 
+/// Laid over every sample of a gridded weather before it is drawn (the CIGI host's weather over a loaded
+/// file: cigi_weather_merge.h). Immutable once made: samples are made on the renderer's worker thread.
+class WeatherOverlay
+{
+  public:
+    virtual ~WeatherOverlay() = default;
+    /// The weather drawn: `gridded` (a sample of the timeline, or the built-in scene) with the overlay on it.
+    virtual WeatherSnapshot over(const WeatherSnapshot& gridded) const = 0;
+    /// What status calls it (e.g. "cigi").
+    virtual std::string name() const = 0;
+};
+
 /// The weather frames are rendered with: null timeline = the built-in scene.
 struct WeatherState
 {
     std::shared_ptr<const WeatherTimeline> timeline;
     std::string source = "builtin";  ///< "builtin" or the file
+    /// Laid over each sample of `timeline` (null: the timeline is drawn as it is). Kept when a new file is
+    /// loaded: it is laid over that one's samples.
+    std::shared_ptr<const WeatherOverlay> overlay;
     uint64_t version = 1;            ///< +1 per swap
+    /// `version` is a small step from this version (a CIGI fade step): its swap keeps the renderer's
+    /// reprojection history. Any other swap (a load, a new overlay) leaves it behind, so it no longer matches.
+    uint64_t smallStepFrom = 0;
     std::string lastError;           ///< the last refused file and why ("" after a good load)
     std::string lastErrorPath;       ///< that file: all that clients of another uid are told
 };

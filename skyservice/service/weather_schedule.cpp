@@ -12,27 +12,41 @@ namespace sky
 namespace
 {
 
-/// The weather at a whole second, as `skyservice render --weather` samples it (weather_source.cpp). Runs
-/// on the renderer's worker thread: the timeline is shared read-only (the service never changes a
+/// The weather at a whole second, as `skyservice render --weather` samples it (weather_source.cpp), with
+/// the overlay (a CIGI host's weather) laid over it: so the merge is redone with every sample. Runs on the
+/// renderer's worker thread: the timeline and the overlay are shared read-only (the service never changes a
 /// loaded one, it replaces the pointer), the built-in scene is a pure function of the time.
-WeatherMaker sampler(std::shared_ptr<const WeatherTimeline> timeline, int64_t atUnixS)
+WeatherMaker sampler(std::shared_ptr<const WeatherTimeline> timeline, std::shared_ptr<const WeatherOverlay> overlay,
+                     int64_t atUnixS)
 {
-    return [timeline = std::move(timeline), atUnixS] {
-        return std::make_shared<const WeatherSnapshot>(timeline && !timeline->empty() ? timeline->sample(double(atUnixS))
-                                                                                      : makeBuiltinWeather(atUnixS));
+    return [timeline = std::move(timeline), overlay = std::move(overlay), atUnixS] {
+        WeatherSnapshot w =
+            timeline && !timeline->empty() ? timeline->sample(double(atUnixS)) : makeBuiltinWeather(atUnixS);
+        return std::make_shared<const WeatherSnapshot>(overlay ? overlay->over(w) : std::move(w));
     };
+}
+
+WeatherMaker sampler(const WeatherState& weather, int64_t atUnixS)
+{
+    return sampler(weather.timeline, weather.overlay, atUnixS);
 }
 
 }  // namespace
 
-void WeatherSchedule::stage(Renderer& r, const WeatherState& weather, int64_t sampleAtUnixS, int direction)
+std::string weatherName(const WeatherState& weather)
+{
+    return weather.overlay ? weather.source + " + " + weather.overlay->name() : weather.source;
+}
+
+void WeatherSchedule::stage(Renderer& r, const WeatherState& weather, int64_t sampleAtUnixS, int direction,
+                            StageHistory history)
 {
     Staged s;
-    s.weather = DrawnWeather{weather.version, weather.source, sampleAtUnixS};
+    s.weather = DrawnWeather{weather.version, weatherName(weather), sampleAtUnixS};
     s.direction = direction;
     s.held = direction != 0;
-    s.rendererVersion = stageWeather(r, sampler(weather.timeline, sampleAtUnixS),
-                                     s.held ? StageSwap::WhenReleased : StageSwap::WhenReady);
+    s.rendererVersion = stageWeather(r, sampler(weather, sampleAtUnixS),
+                                     s.held ? StageSwap::WhenReleased : StageSwap::WhenReady, history);
     staged_ = s;
     lastServiceVersion_ = weather.version;
 }
@@ -43,8 +57,8 @@ void WeatherSchedule::beforeFrame(Renderer& r, const WeatherState& weather, cons
     if (!started_ || clock.jumps != clockJumpsSeen_)
     {
         // Nothing to keep drawing yet, or a jump in time: this frame draws the weather of its time.
-        setWeather(r, *sampler(weather.timeline, second)());
-        drawn_ = DrawnWeather{weather.version, weather.source, second};
+        setWeather(r, *sampler(weather, second)());
+        drawn_ = DrawnWeather{weather.version, weatherName(weather), second};
         staged_.reset();
         lastServiceVersion_ = weather.version;
         clockJumpsSeen_ = clock.jumps;
@@ -53,7 +67,17 @@ void WeatherSchedule::beforeFrame(Renderer& r, const WeatherState& weather, cons
     }
     if (weather.version != lastServiceVersion_)
     {
-        stage(r, weather, second, 0);  // a newly loaded weather (replaces a staged re-sample)
+        // A newly loaded weather (replaces a staged re-sample), or a small step of a fade that keeps the
+        // reprojection history: then a re-sample staged and not drawn yet is dropped first (the renderer
+        // keeps the history only when every stage a small one replaces was small too), the step samples
+        // this second anyway.
+        const bool small = weather.smallStepFrom == lastServiceVersion_ && weather.version == lastServiceVersion_ + 1;
+        if (small && staged_ && staged_->direction != 0)
+        {
+            cancelStagedWeather(r);
+            staged_.reset();
+        }
+        stage(r, weather, second, 0, small ? StageHistory::Keep : StageHistory::Drop);
         return;
     }
     const int direction = clock.rate > 0 ? 1 : clock.rate < 0 ? -1 : 0;

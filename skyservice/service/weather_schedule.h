@@ -12,6 +12,9 @@
 //    has reached it: that frame draws it when it was ready in time (otherwise a later one does). When
 //    the clock outran the samples (a high rate, or a slow job), the next one is taken at the frame's
 //    own second.
+// A weather's overlay (a CIGI host's weather over a loaded file) is laid over every sample, so it is merged
+// again with each new sample and each newly loaded file. A small step (WeatherState::smallStepFrom: a CIGI
+// fade step) is staged to keep the renderer's reprojection history; every other new weather drops it.
 // Synchronous (setWeather, the window made on the frame path): the first frame, and the first frame
 // after a set_time with a time (a jump in time, like a teleport: that frame equals a one-shot render of
 // its view, time and weather). With rate 0 nothing is re-sampled, so a service frame equals
@@ -31,6 +34,10 @@ namespace sky
 /// fields change on the scale of the model's hourly steps, so a minute is invisible, and a frozen
 /// clock samples exactly once.
 inline constexpr double kWeatherResampleS = 60;
+
+/// The weather's name in status and logs: the source, with " + " and the overlay's name when one is laid
+/// over it (e.g. "/data/gfs.skywx + cigi").
+std::string weatherName(const WeatherState& weather);
 
 /// What a frame drew: the service's weather (WeatherState::version, source) sampled at a time.
 struct DrawnWeather
@@ -61,7 +68,8 @@ private:
         int direction = 0;  ///< +1 / -1: a held re-sample for a clock running forward / backward; 0: a load
         bool held = false;
     };
-    void stage(Renderer& r, const WeatherState& weather, int64_t sampleAtUnixS, int direction);
+    void stage(Renderer& r, const WeatherState& weather, int64_t sampleAtUnixS, int direction,
+               StageHistory history = StageHistory::Drop);
 
     DrawnWeather drawn_;
     std::optional<Staged> staged_;

@@ -3,7 +3,8 @@
 // validation on, small images, test quality):
 //  - frames keep drawing the old weather, byte for byte, until the new one's window is ready; the first
 //    frame that draws it is byte for byte a one-shot render with it; no window is made on the frame path;
-//  - the swap frame drops the reprojection history (as setWeather does), the frames before keep it;
+//  - the swap frame drops the reprojection history (as setWeather does), the frames before keep it; a
+//    small step (StageHistory::Keep, a fade step) keeps it, unless it replaced a new weather not drawn yet;
 //  - a bad staged weather (empty, wrong field sizes) is refused and the last good one stays;
 //  - a flight during which a weather is staged makes no window on the frame path either.
 // It prints the CPU time of the frame that first draws a new weather, set synchronously and staged.
@@ -115,6 +116,41 @@ TEST_F(WeatherSwap, TheSwapFrameDropsTheReprojectionHistoryAndTheFramesBeforeKee
     EXPECT_EQ(lastHistoryDropReason(*renderer), "no history");
     render(v, q);
     EXPECT_EQ(lastHistoryDropReason(*renderer), "");
+}
+
+TEST_F(WeatherSwap, ASmallStagedStepKeepsTheReprojectionHistory)
+{
+    QualitySettings q = testQuality();
+    q.reprojected = true;
+    const ViewRequest v = overhead();
+    setWeather(*renderer, scattered());
+    render(v, q);
+    render(v, q);
+    ASSERT_EQ(lastHistoryDropReason(*renderer), "");
+    const uint64_t& drops = renderer->reconstruct.reprojection.drops;
+    // Stages `w` and renders until it swaps in; true when the swap frame kept the history.
+    auto swapIn = [&](const WeatherSnapshot& w, StageHistory history, bool dropFirst = false)
+    {
+        if (dropFirst) // a new weather staged just before, replaced by the small step before it swapped in
+            stageWeather(*renderer, std::make_shared<const WeatherSnapshot>(overcast()));
+        const uint64_t version =
+            stageWeather(*renderer, std::make_shared<const WeatherSnapshot>(w), StageSwap::WhenReady, history);
+        for (int frames = 0; frames < kMaxFramesToSwap; ++frames)
+            if (render(v, q).weatherVersion == version)
+                return lastHistoryDropReason(*renderer).empty();
+        ADD_FAILURE() << "the staged weather never swapped in";
+        return false;
+    };
+    const uint64_t before = drops;
+    EXPECT_TRUE(swapIn(uniformLayer(0.53f, CloudType::Cumulus, 1200.0f, 2600.0f), StageHistory::Keep))
+        << "a fade step dropped the history: " << lastHistoryDropReason(*renderer);
+    EXPECT_EQ(drops, before);
+    EXPECT_FALSE(swapIn(overcast(), StageHistory::Drop)) << "a new weather kept the history";
+    EXPECT_EQ(drops, before + 1);
+    render(v, q);
+    EXPECT_FALSE(swapIn(uniformLayer(0.97f, CloudType::Stratus, 1000.0f, 1800.0f), StageHistory::Keep, true))
+        << "a small step over a new weather never drawn kept the history";
+    EXPECT_EQ(drops, before + 2);
 }
 
 TEST_F(WeatherSwap, ABadStagedWeatherKeepsTheLastGoodOne)

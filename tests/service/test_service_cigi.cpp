@@ -112,9 +112,9 @@ struct CloudFrame
     }
 };
 
-/// Renders (client `render`) until the frame draws the host's weather ("cigi", ready, faded in) from an
+/// Renders (client `render`) until the frame draws the host's weather (`source`, ready, faded in) from an
 /// eye at `altM`, then returns the next frame.
-bool settledFrame(Ig& ig, double altM, CloudFrame& out, std::string& error)
+bool settledFrame(Ig& ig, double altM, CloudFrame& out, std::string& error, const std::string& source = "cigi")
 {
     // A bound, not a measurement: the weather's window is made on a worker thread, slow on a loaded machine.
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
@@ -122,7 +122,7 @@ bool settledFrame(Ig& ig, double altM, CloudFrame& out, std::string& error)
     {
         nlohmann::json s = ig.status();
         const nlohmann::json& w = s["weather"];
-        const bool settled = w["frame"].is_object() && w["frame"]["source"] == "cigi" &&
+        const bool settled = w["frame"].is_object() && w["frame"]["source"] == source &&
                              w["frame"]["version"] == w["version"] && w["pending"] == false &&
                              s["cigi"]["applied"]["fading"] == false &&
                              std::fabs(s["view"]["alt"].get<double>() - altM) < 0.01;
@@ -239,6 +239,34 @@ TEST(ServiceCigi, StratusDeckBelowFrom3000mAndOvercastFrom500m)
     EXPECT_EQ(cigi["start_of_frames_sent"].get<uint64_t>(), frames);
     EXPECT_EQ(cigi["errors_total"].get<uint64_t>(), 0u);
     EXPECT_EQ(ig.status()["weather"]["source"], "cigi");
+    EXPECT_EQ(ig.daemon.stop(), 0);
+}
+
+// With a snapshot file loaded the host's deck is laid over it (skyservice/service/cigi_weather_merge.h):
+// the file stays loaded (status names both) and the frames draw the deck.
+TEST(ServiceCigi, HostsDeckIsLaidOverALoadedFile)
+{
+    CigiTestHost host;
+    std::string error;
+    ASSERT_TRUE(host.open(error)) << error;
+    Ig ig;
+    ASSERT_TRUE(ig.start(host.port(), 0, 32, 18, error)) << error;
+    const std::string file = ig.tmp.path + "/model.skywx";
+    ASSERT_TRUE(writeBuiltinSnapshot(file, 1782043200, error)) << error; // 2026-06-21T12:00:00Z
+    RawClient c;
+    ASSERT_TRUE(c.open(ig.daemon.socketPath));
+    ASSERT_EQ(c.request({{"type", "load_weather"}, {"path", file}}).value("type", ""), "ok");
+    nlohmann::json s;
+    ASSERT_TRUE(waitForStatus(c, [&](const nlohmann::json& j) { return j["weather"]["source"] == file; }, 10000, &s))
+        << s;
+    ASSERT_TRUE(host.send(deckScene(ByteOrder::Big, 1, 3000).bytes(), ig.port));
+    CloudFrame above;
+    ASSERT_TRUE(settledFrame(ig, 3000 + undulationM(kLat, kLon), above, error, file + " + cigi")) << error;
+    const uint32_t h = above.height;
+    EXPECT_GT(above.meanAlpha(h / 2 + 2, h), 0.9) << "no deck below the horizon from 3000 m";
+    s = ig.status();
+    EXPECT_EQ(s["weather"]["source"], file + " + cigi");
+    EXPECT_TRUE(s["cigi"]["applied"]["over_gridded"].get<bool>());
     EXPECT_EQ(ig.daemon.stop(), 0);
 }
 

@@ -4,6 +4,7 @@
 //  - a staged weather is never handed out by the step that starts its job, swaps in with exactly the
 //    window a frame would make itself for the eye's node, waits for its release when held, is made
 //    again for the node the eye moved to, and a newer stage supersedes an older one;
+//  - a small step keeps the reprojection history unless it replaced a new weather not swapped in yet;
 //  - a bad staged weather (empty grid, wrong field sizes, a maker that fails) is refused with a reason;
 //  - the look-ahead covers 1.5 s of motion, within [1.5 km, 20 km]; the node prefetched is the one the
 //    eye reaches next, named from the moment it enters the cell before, even at 3000 m/s.
@@ -141,6 +142,36 @@ TEST(WeatherStage, ANewerStageSupersedesAnOlderOneWhoseJobStillRuns)
     EXPECT_EQ(out->version, 2u);
     EXPECT_EQ(out->weather, newer);
     EXPECT_EQ(s.swapped, 1u);
+}
+
+// A small step (StageHistory::Keep) swaps in keeping the reprojection history; one that replaced a new
+// weather before it swapped in does not (the frames still draw the weather before that one), one that
+// replaced another small step does.
+TEST(WeatherStage, ASmallStepKeepsTheHistoryUnlessItReplacedANewWeather)
+{
+    const WindowKey eye = keyAt(44.3, 7.5);
+    auto weather = builtin(kNoon);
+    auto make = [weather] { return weather; };
+    WeatherStage s;
+    stage(s, 1, make, StageSwap::WhenReady, StageHistory::Keep);
+    std::optional<StagedResult> out = stepUntilDone(s, eye);
+    ASSERT_TRUE(out);
+    EXPECT_TRUE(out->keepHistory);
+    stage(s, 2, make, StageSwap::WhenReady);
+    stage(s, 3, make, StageSwap::WhenReady, StageHistory::Keep);
+    out = stepUntilDone(s, eye);
+    ASSERT_TRUE(out);
+    EXPECT_EQ(out->version, 3u);
+    EXPECT_FALSE(out->keepHistory) << "a small step over a new weather never drawn";
+    stage(s, 4, make, StageSwap::WhenReady, StageHistory::Keep);
+    stage(s, 5, make, StageSwap::WhenReady, StageHistory::Keep);
+    out = stepUntilDone(s, eye);
+    ASSERT_TRUE(out);
+    EXPECT_TRUE(out->keepHistory);
+    stage(s, 6, make, StageSwap::WhenReady);
+    out = stepUntilDone(s, eye);
+    ASSERT_TRUE(out);
+    EXPECT_FALSE(out->keepHistory);
 }
 
 TEST(WeatherStage, BadWeatherIsRefusedWithAReason)
