@@ -13,7 +13,8 @@
 # Knobs (environment): SKY_SVC_RUNS (which runs, default all of them, in this order:
 # "1080p 1080p-layers 1080p-shadow 4k 640 rate1000 sky-bench baseline"; "before" runs 1080p shm with an
 # earlier tree prepared with `prepare-before REV`, the frame path before a change, in the same call;
-# "before-both" its shm and Vulkan transports, "before-shadow" with a 1024² shadow map), SKY_SVC_FRAMES (timed frames per scene, size and
+# "before-both" its shm and Vulkan transports, "before-shadow" with a 1024² shadow map, "sky-bench-before"
+# the renderer alone with the earlier tree), SKY_SVC_FRAMES (timed frames per scene, size and
 # transport; default 300), SKY_SVC_SCENES (default all), SKY_SVC_LIMIT_S (each run's time limit, default
 # 150 s), SKY_SVC_BUILD=0 (reuse /tmp/build from an earlier call on the same warm machine). A device call
 # lasts at most 10 minutes: with a slow frame path, lower SKY_SVC_FRAMES or split SKY_SVC_RUNS over calls.
@@ -73,7 +74,8 @@ configure() {  # SRC BUILD SPIRV
 }
 if [ -d "$G/before/src" ] && [ "${SKY_SVC_BUILD:-1}" != 0 ]; then
   if configure "$G/before/src" /tmp/build-before "$G/before/spirv" &&
-     timeout 300 cmake --build /tmp/build-before --target skyservice sky-service-bench -j16 > /tmp/build-before.log 2>&1
+     timeout 300 cmake --build /tmp/build-before --target skyservice sky-service-bench sky-bench -j16 \
+      > /tmp/build-before.log 2>&1
   then el "built the earlier tree (.gpu/before)"; else el "earlier tree: build FAILED"; tail -30 /tmp/build-before.log; fi
 fi
 
@@ -106,6 +108,13 @@ svcBefore() {  # LABEL OPTIONS...: the earlier tree's daemon and bench, with its
     --warmup 10 --device NVIDIA --json "$OUT/service-before-$label.json" "$@"
   el "earlier tree: sky-service-bench $label rc=$?"
 }
+skyBench() {  # SUFFIX BENCH SPIRV
+  el "sky-bench$1 reprojected 1920x1080"
+  SKY_SPIRV_DIR=$3 timeout "$LIMIT" "$2" --scene "$SCENES" --width 1920 --height 1080 --frames 100 --warmup 20 \
+    --mode reprojected --speed 250 --steps 96 --light-samples 5 --device NVIDIA \
+    --json "$OUT/bench-reprojected-1920x1080$1.json" | grep -v "MiB$"
+  el "sky-bench$1 rc=${PIPESTATUS[0]}"
+}
 for run in ${SKY_SVC_RUNS:-1080p 1080p-layers 1080p-shadow 4k 640 rate1000 sky-bench baseline}; do
   case $run in
     1080p) svc 1920x1080 --size 1920x1080 --transport both ;;
@@ -120,11 +129,9 @@ for run in ${SKY_SVC_RUNS:-1080p 1080p-layers 1080p-shadow 4k 640 rate1000 sky-b
     rate1000) svc 1920x1080-rate1000 --size 1920x1080 --rate-hz 1000 ;;
     sky-bench)  # the renderer alone: same scenes, size, eye speed and quality ("medium" = 96 steps, 5 light
                 # samples); what the service adds is the difference
-      el "sky-bench reprojected 1920x1080"
-      timeout "$LIMIT" $BENCH --scene "$SCENES" --width 1920 --height 1080 --frames 100 --warmup 20 \
-        --mode reprojected --speed 250 --steps 96 --light-samples 5 --device NVIDIA \
-        --json "$OUT/bench-reprojected-1920x1080.json" | grep -v "MiB$"
-      el "sky-bench rc=${PIPESTATUS[0]}" ;;
+      skyBench "" $BENCH "$SKY_SPIRV_DIR" ;;
+    sky-bench-before)  # the same with the earlier tree (a change's cost on the renderer, in the same call)
+      skyBench "-before" /tmp/build-before/skyservice/sky-bench "$G/before/spirv" ;;
     baseline)  # GPU.md's yardstick at the same size, in the same call
       if timeout 60 cmake -S $G/baseline -B /tmp/bb -DCMAKE_BUILD_TYPE=Release \
            -DCLOUDPROBE_SPV=$G/baseline/cloud.comp.spv -DVulkan_INCLUDE_DIR=$G/include \
