@@ -63,10 +63,9 @@ int parseDemoOptions(int argc, char** argv, DemoOptions& o)
     app.add_option("--frame-timeout-ms", o.frameTimeoutMs, "Longest wait for one frame (ms)")->capture_default_str();
     const std::map<std::string, CompositeMode> composites{{"layers", CompositeMode::Layers},
                                                           {"display", CompositeMode::Display}};
-    CLI::Option* compositeOption =
-        app.add_option("--composite", o.composite,
-                       "layers (terrain with relief by depth from the service's sky/clouds/depth layers, shared "
-                       "memory only; the default) | display (flat ground over the finished frame)")
+    app.add_option("--composite", o.composite,
+                   "layers (terrain with relief by depth from the service's sky/clouds/depth layers; the "
+                   "default) | display (flat ground over the finished frame)")
             ->transform(CLI::CheckedTransformer(composites, CLI::ignore_case));
     bool noGround = false;
     app.add_flag("--no-ground", noGround, "Show the service's frame as it is (no demo ground, no shadows)");
@@ -91,17 +90,6 @@ int parseDemoOptions(int argc, char** argv, DemoOptions& o)
         o.angles.rightDeg = frustumDeg[1];
         o.angles.upDeg = frustumDeg[2];
         o.angles.downDeg = frustumDeg[3];
-    }
-    if (o.transport == Transport::Vulkan && o.composite == CompositeMode::Layers)
-    {
-        // The zero-copy transport exports the display image only (skyclient.h).
-        if (compositeOption->count() > 0)
-        {
-            std::fprintf(stderr, "client_demo: --composite layers needs the shared-memory transport (the vulkan "
-                                 "transport carries the display image only): use --transport shm or auto\n");
-            return 2;
-        }
-        o.composite = CompositeMode::Display;
     }
     double unused = 0.0;
     if (!o.timeIso.empty() && !parseUtc(o.timeIso, unused))

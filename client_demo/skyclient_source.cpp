@@ -82,13 +82,13 @@ std::unique_ptr<SkyClientSource> SkyClientSource::open(const std::string& socket
     if (!source->client_)
         return nullptr;
 
+    const uint32_t compositing = (1u << SKY_LAYER_SKY) | (1u << SKY_LAYER_CLOUDS) | (1u << SKY_LAYER_DEPTH);
 #ifdef DEMO_HAVE_VULKAN_IMPORT
-    // Auto with layers wanted takes shared memory: the zero-copy transport exports the display image only.
-    if (vk != nullptr && (transport == Transport::Vulkan || (transport == Transport::Auto && !wantLayers)))
+    if (vk != nullptr && (transport == Transport::Vulkan || transport == Transport::Auto))
     {
         SkyExportedFrames exported{};
         std::string why;
-        if (sky_client_subscribe_vulkan(source->client_, &exported) != SKY_OK)
+        if (sky_client_subscribe_vulkan_layers(source->client_, wantLayers ? compositing : 0u, &exported) != SKY_OK)
             why = std::string("the service exports no frames: ") + sky_client_last_error(source->client_);
         else
         {
@@ -130,7 +130,6 @@ std::unique_ptr<SkyClientSource> SkyClientSource::open(const std::string& socket
         return nullptr;
     }
 #endif
-    const uint32_t compositing = (1u << SKY_LAYER_SKY) | (1u << SKY_LAYER_CLOUDS) | (1u << SKY_LAYER_DEPTH);
     const uint32_t layers = (1u << SKY_LAYER_DISPLAY) | (wantLayers ? compositing : 0u);
     if (sky_client_subscribe_shm_layers(source->client_, layers) != SKY_OK)
     {
@@ -221,10 +220,6 @@ FetchStatus SkyClientSource::fetch(uint64_t afterFrameId, int timeoutMs, LatestF
 #ifdef DEMO_HAVE_VULKAN_IMPORT
         if (import_)
         {
-            // The exported images are the display frame and the shadow map: no layers on this transport.
-            out.skyRgba.clear();
-            out.cloudsRgba.clear();
-            out.depthM.clear();
             copied = import_->copySlot(frame.slot, frame.frame_id, frame.width, frame.height, frame.shadow_size, out,
                                        error_);
         }

@@ -3,6 +3,7 @@
 
 #include "skyservice/client/vulkan/skyclient_vulkan.h"
 
+#include <glm/gtc/packing.hpp>
 #include <unistd.h>
 
 #include <algorithm>
@@ -14,7 +15,33 @@ namespace demo
 struct VulkanFrameImport::Imported
 {
     SkyImportedFrames frames{};
+    SkyImportedLayers layers{};
 };
+
+namespace
+{
+
+constexpr uint32_t kCompositingLayers[] = {SKY_LAYER_SKY, SKY_LAYER_CLOUDS, SKY_LAYER_DEPTH};
+
+// The layer images hold RGBA16F (sky, clouds) or RG32F (depth): 8 bytes a pixel; LatestFrame holds floats.
+void widenLayer(const uint8_t* bytes, size_t pixels, uint32_t layer, std::vector<float>& out)
+{
+    if (layer == SKY_LAYER_DEPTH)
+    {
+        out.resize(pixels * 2);
+        std::memcpy(out.data(), bytes, pixels * 8);
+        return;
+    }
+    out.resize(pixels * 4);
+    for (size_t k = 0; k < pixels * 4; ++k)
+    {
+        uint16_t bits = 0;
+        std::memcpy(&bits, bytes + 2 * k, 2);
+        out[k] = glm::unpackHalf1x16(bits);
+    }
+}
+
+}  // namespace
 
 VulkanFrameImport::VulkanFrameImport(const VulkanDevice& vk) : vk_(vk) {}
 
@@ -38,7 +65,8 @@ std::vector<const char*> VulkanFrameImport::requiredExtensions()
 void closeExportedFds(SkyExportedFrames& exported)
 {
     for (uint32_t i = 0; i < SKY_MAX_EXPORTED_SLOTS; ++i)
-        for (SkyExportedImage* image : {&exported.frame[i], &exported.shadow[i]})
+        for (SkyExportedImage* image : {&exported.frame[i], &exported.shadow[i], &exported.layer[SKY_LAYER_SKY][i],
+                                        &exported.layer[SKY_LAYER_CLOUDS][i], &exported.layer[SKY_LAYER_DEPTH][i]})
             if (image->memory_fd >= 0)
             {
                 ::close(image->memory_fd);
@@ -69,12 +97,21 @@ std::unique_ptr<VulkanFrameImport> VulkanFrameImport::create(const VulkanDevice&
         closeExportedFds(exported);  // sky_vulkan_import_frames closed and reset the rest already
         return nullptr;
     }
+    if (sky_vulkan_import_layers(vk.physicalDevice, vk.device, &exported, &import->imported_->layers) != SKY_OK)
+    {
+        error = std::string("importing the service's compositing layers: ") + sky_vulkan_last_error();
+        return nullptr;  // ~VulkanFrameImport destroys the frames; the layer fds were closed
+    }
     VkDeviceSize bytes = 0;
     for (uint32_t i = 0; i < exported.slot_count; ++i)
     {
         const SkyImportedImage& f = import->imported_->frames.frame[i];
         const SkyImportedImage& s = import->imported_->frames.shadow[i];
-        bytes = std::max<VkDeviceSize>(bytes, VkDeviceSize(f.width) * f.height * 4 + VkDeviceSize(s.width) * s.height * 4);
+        VkDeviceSize slot = VkDeviceSize(f.width) * f.height * 4 + VkDeviceSize(s.width) * s.height * 4;
+        for (uint32_t layer : kCompositingLayers)
+            if (import->imported_->layers.image[layer][i].image != VK_NULL_HANDLE)
+                slot += VkDeviceSize(f.width) * f.height * 8;
+        bytes = std::max(bytes, slot);
     }
     createHostBuffer(vk, std::max<VkDeviceSize>(bytes, 16), import->readback_);
     return import;
@@ -86,6 +123,7 @@ VulkanFrameImport::~VulkanFrameImport()
     {
         vkDeviceWaitIdle(vk_.device);
         sky_vulkan_destroy_frames(vk_.device, &imported_->frames);
+        sky_vulkan_destroy_layers(vk_.device, &imported_->layers);
     }
     destroyHostBuffer(vk_, readback_);
 }
@@ -122,6 +160,23 @@ bool VulkanFrameImport::copySlot(uint32_t slot, uint64_t /*frameId*/, uint32_t w
         shadowRegion.imageExtent = {shadowSize, shadowSize, 1};
         vkCmdCopyImageToBuffer(cmd, shadow.image, VK_IMAGE_LAYOUT_GENERAL, readback_.buffer, 1, &shadowRegion);
     }
+    // The compositing layers (those imported), after the shadow map, 8 bytes a pixel each.
+    const VkDeviceSize layerBytes = VkDeviceSize(width) * height * 8;
+    VkDeviceSize layerOffset[SKY_LAYER_COUNT] = {};
+    VkDeviceSize next = frameBytes + VkDeviceSize(shadowSize) * shadowSize * 4;
+    for (uint32_t layer : kCompositingLayers)
+    {
+        const SkyImportedImage& image = imported_->layers.image[layer][slot];
+        if (image.image == VK_NULL_HANDLE)
+            continue;
+        sky_vulkan_cmd_acquire(cmd, &image, vk_.queueFamily);
+        VkBufferImageCopy layerRegion = {};
+        layerRegion.bufferOffset = layerOffset[layer] = next;
+        layerRegion.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        layerRegion.imageExtent = {width, height, 1};
+        vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_GENERAL, readback_.buffer, 1, &layerRegion);
+        next += layerBytes;
+    }
     VkMemoryBarrier toHost = {VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
     toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
@@ -137,6 +192,14 @@ bool VulkanFrameImport::copySlot(uint32_t slot, uint64_t /*frameId*/, uint32_t w
     out.shadowTransmittance.resize(size_t(shadowSize) * shadowSize);
     if (shadowSize > 0)
         std::memcpy(out.shadowTransmittance.data(), bytes + frameBytes, out.shadowTransmittance.size() * sizeof(float));
+    std::vector<float>* targets[SKY_LAYER_COUNT] = {nullptr, &out.skyRgba, &out.cloudsRgba, &out.depthM};
+    for (uint32_t layer : kCompositingLayers)
+    {
+        if (imported_->layers.image[layer][slot].image == VK_NULL_HANDLE)
+            targets[layer]->clear();
+        else
+            widenLayer(bytes + layerOffset[layer], size_t(width) * height, layer, *targets[layer]);
+    }
     return true;
 }
 

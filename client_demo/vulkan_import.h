@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The zero-copy transport on the demo's side: the service's exported frame and shadow images imported
-// into the demo's device (skyservice/client/vulkan/skyclient_vulkan.h), and copied from there into host
-// memory for the CPU compositing (compositor.h says why the demo composites on the CPU; a real image
+// The zero-copy transport on the demo's side: the service's exported frame, shadow and compositing-layer
+// images imported into the demo's device (skyservice/client/vulkan/skyclient_vulkan.h), and copied from
+// there into host memory for the CPU compositing (compositor.h says why the demo composites on the CPU; a real image
 // generator would sample the imported image directly).
 #pragma once
 
@@ -42,7 +42,8 @@ public:
 
     /**
      * Copies slot `slot`'s frame (width x height) and shadow map (shadowSize^2, 0 = none) into out.rgba and
-     * out.shadowTransmittance, waiting for the GPU copy to finish.
+     * out.shadowTransmittance, and the compositing layers imported into out.skyRgba/cloudsRgba/depthM (the
+     * others cleared), waiting for the GPU copy to finish.
      **********************************************************************/
     bool copySlot(uint32_t slot, uint64_t frameId, uint32_t width, uint32_t height, uint32_t shadowSize,
                   LatestFrame& out, std::string& error);

@@ -11,9 +11,9 @@
 # bench writes its synthetic weather with sky_weather, which needs neither), then runs the plan below
 # and writes service-*.json, bench-reprojected-*.json, clocks.csv and service-log.txt to $OUT.
 # Knobs (environment): SKY_SVC_RUNS (which runs, default all of them, in this order:
-# "1080p 1080p-layers 1080p-shadow 4k 640 rate1000 sky-bench baseline"; "before" runs 1080p shm with an
-# earlier tree prepared with `prepare-before REV`, the frame path before a change, in the same call;
-# "before-both" its shm and Vulkan transports, "before-shadow" with a 1024² shadow map, "sky-bench-before"
+# "1080p 1080p-layers 1080p-layers-vulkan 1080p-shadow 4k 640 rate1000 sky-bench baseline"; "before" runs
+# 1080p shm with an earlier tree prepared with `prepare-before REV`, the frame path before a change, in the same
+# call; "before-both" its shm and Vulkan transports, "before-shadow" with a 1024² shadow map, "sky-bench-before"
 # the renderer alone with the earlier tree), SKY_SVC_FRAMES (timed frames per scene, size and
 # transport; default 300), SKY_SVC_SCENES (default all), SKY_SVC_LIMIT_S (each run's time limit, default
 # 150 s), SKY_SVC_BUILD=0 (reuse /tmp/build from an earlier call on the same warm machine). A device call
@@ -115,10 +115,12 @@ skyBench() {  # SUFFIX BENCH SPIRV
     --json "$OUT/bench-reprojected-1920x1080$1.json" | grep -v "MiB$"
   el "sky-bench$1 rc=${PIPESTATUS[0]}"
 }
-for run in ${SKY_SVC_RUNS:-1080p 1080p-layers 1080p-shadow 4k 640 rate1000 sky-bench baseline}; do
+for run in ${SKY_SVC_RUNS:-1080p 1080p-layers 1080p-layers-vulkan 1080p-shadow 4k 640 rate1000 sky-bench baseline}; do
   case $run in
     1080p) svc 1920x1080 --size 1920x1080 --transport both ;;
     1080p-layers) svc 1920x1080-layers --size 1920x1080 --layers display,sky,clouds,depth ;;
+    1080p-layers-vulkan) svc 1920x1080-layers-vulkan --size 1920x1080 --transport vulkan \
+                           --layers display,sky,clouds,depth ;;
     before) svcBefore 1920x1080 --size 1920x1080 --frames ${SKY_SVC_BEFORE_FRAMES:-30} ;;
     before-both) svcBefore 1920x1080 --size 1920x1080 --transport both --frames ${SKY_SVC_BEFORE_FRAMES:-300} ;;
     before-shadow) svcBefore 1920x1080-shadow1024 --size 1920x1080 --shadow-map 1024 \

@@ -32,7 +32,7 @@ constexpr int kExitOk = 0, kExitRuntime = 1, kExitUsage = 2;
 constexpr double kDaemonStartTimeoutS = 300; // device creation and pipelines; minutes on a loaded lavapipe host
 constexpr double kWeatherTimeoutS = 300;
 constexpr double kDaemonStopTimeoutS = 60;
-// The layers a shared-memory subscription may name (skyservice/ipc/PROTOCOL.md "Compositing layers").
+// The layers a subscription may name (skyservice/ipc/PROTOCOL.md "Compositing layers").
 const char* const kKnownLayers[] = {"display", "sky", "clouds", "depth"};
 
 struct ServiceBenchOptions
@@ -88,7 +88,7 @@ bool parseSizes(const ServiceBenchOptions& o, std::vector<Size>& sizes, std::str
     return true;
 }
 
-bool parseLayers(const std::string& spec, bool vulkanAsked, std::vector<std::string>& layers, std::string& error)
+bool parseLayers(const std::string& spec, std::vector<std::string>& layers, std::string& error)
 {
     size_t start = 0;
     while (start <= spec.size())
@@ -98,11 +98,6 @@ bool parseLayers(const std::string& spec, bool vulkanAsked, std::vector<std::str
         if (std::find(std::begin(kKnownLayers), std::end(kKnownLayers), name) == std::end(kKnownLayers))
         {
             error = "unknown layer \"" + name + "\"; known: display, sky, clouds, depth";
-            return false;
-        }
-        if (name != "display" && vulkanAsked)
-        {
-            error = "layer \"" + name + "\" is published in shared memory only (--transport shm)";
             return false;
         }
         layers.push_back(name);
@@ -223,7 +218,7 @@ int runServiceBench(const ServiceBenchOptions& o)
         std::fprintf(stderr, "sky-service-bench: --scene %s: %s\n", o.scene.c_str(), error.c_str());
         return kExitUsage;
     }
-    if (!parseSizes(o, sizes, error) || !parseLayers(o.layers, o.transport != "shm", run.layers, error))
+    if (!parseSizes(o, sizes, error) || !parseLayers(o.layers, run.layers, error))
     {
         std::fprintf(stderr, "sky-service-bench: %s\n", error.c_str());
         return kExitUsage;
@@ -305,7 +300,8 @@ int main(int argc, char** argv)
         ->check(CLI::Range(0.0, 1000.0));
     app.add_option("--speed", o.speedMps, "Eye speed along its heading when asking for frames (m/s, 60 Hz steps)")
         ->check(CLI::Range(0.0, 10000.0));
-    app.add_option("--layers", o.layers, "What each shm subscription asks for: display,sky,clouds,depth (comma-separated)");
+    app.add_option("--layers", o.layers,
+                   "What each subscription asks for: display,sky,clouds,depth (comma-separated; vulkan: as images)");
     app.add_option("--device", o.device, "The daemon's Vulkan device: index or part of its name");
     app.add_option("--daemon", o.daemon, "The skyservice executable (default: next to this program)");
     app.add_option("--json", o.json, "Write the results as JSON to this file");

@@ -46,7 +46,7 @@ class Session
         if (s_.transport == "vulkan")
         {
             SkyExportedFrames exported{};
-            if (sky_client_subscribe_vulkan(c_.get(), &exported) != SKY_OK)
+            if (sky_client_subscribe_vulkan_layers(c_.get(), s_.layers, &exported) != SKY_OK)
             {
                 error = c_.why("subscribe vulkan");
                 return false;

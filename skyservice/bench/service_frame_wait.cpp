@@ -35,6 +35,8 @@ bool FrameCompletionWait::open(SkyExportedFrames& frames, std::string& error)
     {
         closeFd(frames.frame[i].memory_fd);
         closeFd(frames.shadow[i].memory_fd);
+        for (uint32_t k = 0; k < SKY_LAYER_COUNT; ++k)
+            closeFd(frames.layer[k][i].memory_fd);
     }
     if (frames.timeline_semaphore_fd < 0)
         return true;

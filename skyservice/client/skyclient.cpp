@@ -3,6 +3,8 @@
 // ring mapped read-only. Everything waits in poll() with a deadline; nothing raises SIGPIPE.
 #pragma GCC visibility push(default)
 #include "skyservice/client/skyclient.h"
+
+#include "skyservice/client/export_reply.h"
 #pragma GCC visibility pop
 
 #include "skyservice/ipc/fd_passing.h"
@@ -12,6 +14,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstddef>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -211,42 +214,6 @@ std::string isoTime(double unixTimeS)
     return buffer;
 }
 
-bool hexBytes(const json& j, const char* key, uint8_t out[16])
-{
-    if (!j.contains(key) || !j[key].is_string() || j[key].get<std::string>().size() != 32)
-        return false;
-    const std::string s = j[key].get<std::string>();
-    for (size_t i = 0; i < 16; ++i)
-    {
-        unsigned value;
-        if (std::sscanf(s.c_str() + 2 * i, "%2x", &value) != 1)
-            return false;
-        out[i] = uint8_t(value);
-    }
-    return true;
-}
-
-bool readImage(const json& j, SkyExportedImage& out)
-{
-    if (!j.is_object())
-        return false;
-    try
-    {
-        out.allocation_bytes = j.at("allocation_bytes").get<uint64_t>();
-        out.memory_type_bits = j.at("memory_type_bits").get<uint32_t>();
-        out.vk_format = j.at("vk_format").get<uint32_t>();
-        out.width = j.at("width").get<uint32_t>();
-        out.height = j.at("height").get<uint32_t>();
-        out.linear_tiling = j.at("linear_tiling").get<bool>() ? 1u : 0u;
-        out.row_pitch = j.at("row_pitch").get<uint64_t>();
-    }
-    catch (const json::exception&)
-    {
-        return false;
-    }
-    return true;
-}
-
 SkyResult mapRing(SkyClient* c, const json& reply)
 {
     if (!reply.contains("shm_name") || !reply["shm_name"].is_string())
@@ -254,6 +221,42 @@ SkyResult mapRing(SkyClient* c, const json& reply)
     std::string error;
     if (!c->ring.open(reply["shm_name"].get<std::string>(), error))
         return fail(c, SKY_ERR_SHM, error);
+    return SKY_OK;
+}
+
+json layerNames(uint32_t layers)
+{
+    json names = json::array();
+    for (uint32_t k = 0; k < SKY_LAYER_COUNT; ++k)
+        if (layers & (1u << k))
+            names.push_back(skyclientdetail::kLayerNames[k]);
+    return names;
+}
+
+SkyResult subscribeVulkan(SkyClient* client, uint32_t layers, SkyExportedFrames& f)
+{
+    json reply;
+    std::vector<int> fds;
+    SkyResult r = request(client, {{"type", "subscribe"}, {"transport", "vulkan"}, {"layers", layerNames(layers)}},
+                          reply, &fds);
+    if (r == SKY_OK)
+        r = expectType(client, reply, "subscribed");
+    if (r != SKY_OK)
+    {
+        closeFds(fds);
+        return r;
+    }
+    const std::string why = skyclientdetail::readExportReply(reply, layers, fds, f);
+    if (!why.empty())
+    {
+        closeFds(fds);
+        return fail(client, SKY_ERR_PROTOCOL, why);
+    }
+    if ((r = mapRing(client, reply)) != SKY_OK)
+    {
+        closeFds(fds);
+        return r;
+    }
     return SKY_OK;
 }
 
@@ -446,13 +449,8 @@ SkyResult sky_client_subscribe_shm_layers(SkyClient* client, uint32_t layers)
         return SKY_ERR_ARGUMENT;
     if (layers == 0 || layers >= (1u << SKY_LAYER_COUNT))
         return fail(client, SKY_ERR_ARGUMENT, "layers must be a non-empty set of (1u << SKY_LAYER_*)");
-    json names = json::array();
-    const char* known[SKY_LAYER_COUNT] = {"display", "sky", "clouds", "depth"};
-    for (uint32_t k = 0; k < SKY_LAYER_COUNT; ++k)
-        if (layers & (1u << k))
-            names.push_back(known[k]);
     json reply;
-    SkyResult r = request(client, {{"type", "subscribe"}, {"transport", "shm"}, {"layers", names}}, reply);
+    SkyResult r = request(client, {{"type", "subscribe"}, {"transport", "shm"}, {"layers", layerNames(layers)}}, reply);
     if (r != SKY_OK || (r = expectType(client, reply, "subscribed")) != SKY_OK)
         return r;
     return mapRing(client, reply);
@@ -573,60 +571,27 @@ SkyResult sky_client_subscribe_vulkan(SkyClient* client, SkyExportedFrames* out_
         return SKY_ERR_ARGUMENT;
     if (!out_frames)
         return fail(client, SKY_ERR_ARGUMENT, "out_frames is null");
-    json reply;
-    std::vector<int> fds;
-    SkyResult r = request(client, {{"type", "subscribe"}, {"transport", "vulkan"}}, reply, &fds);
-    if (r == SKY_OK)
-        r = expectType(client, reply, "subscribed");
-    if (r != SKY_OK)
-    {
-        closeFds(fds);
-        return r;
-    }
     SkyExportedFrames f{};
-    f.timeline_semaphore_fd = -1;
-    for (uint32_t i = 0; i < SKY_MAX_EXPORTED_SLOTS; ++i)
-        f.frame[i].memory_fd = f.shadow[i].memory_fd = -1;
-    const json images = reply.value("images", json());
-    const bool timeline = reply.value("timeline_semaphore", false);
-    std::string why;
-    size_t shadows = 0;
-    if (!images.is_array() || images.empty() || images.size() > SKY_MAX_EXPORTED_SLOTS)
-        why = "the subscribed reply needs 1 to " + std::to_string(SKY_MAX_EXPORTED_SLOTS) + " images";
-    for (size_t i = 0; why.empty() && i < images.size(); ++i)
-    {
-        const json shadow = images[i].is_object() ? images[i].value("shadow", json()) : json();
-        if (!readImage(images[i], f.frame[i]) || (!shadow.is_null() && !readImage(shadow, f.shadow[i])))
-            why = "image " + std::to_string(i) + " of the subscribed reply lacks a field";
-        shadows += shadow.is_null() ? 0 : 1;
-    }
-    if (why.empty() && (!hexBytes(reply, "device_uuid", f.device_uuid) || !hexBytes(reply, "driver_uuid", f.driver_uuid)))
-        why = "the subscribed reply lacks device_uuid/driver_uuid (32 hex digits)";
-    const size_t expected = images.size() + shadows + (timeline ? 1 : 0);
-    if (why.empty() && fds.size() != expected)
-        why = "the subscribed reply came with " + std::to_string(fds.size()) + " fds, expected " + std::to_string(expected);
-    if (!why.empty())
-    {
-        closeFds(fds);
-        return fail(client, SKY_ERR_PROTOCOL, why);
-    }
-    // SCM_RIGHTS order (PROTOCOL.md): frame images, shadow images (of the slots that have one), semaphore.
-    size_t next = 0;
-    f.slot_count = uint32_t(images.size());
-    for (size_t i = 0; i < images.size(); ++i)
-        f.frame[i].memory_fd = fds[next++];
-    for (size_t i = 0; i < images.size(); ++i)
-        if (!images[i].value("shadow", json()).is_null())
-            f.shadow[i].memory_fd = fds[next++];
-    if (timeline)
-        f.timeline_semaphore_fd = fds[next++];
-    if ((r = mapRing(client, reply)) != SKY_OK)
-    {
-        closeFds(fds);
-        return r;
-    }
-    *out_frames = f;
-    return SKY_OK;
+    SkyResult r = subscribeVulkan(client, 1u << SKY_LAYER_DISPLAY, f);
+    // A program built before SkyExportedFrames grew passes the smaller struct: only its fields are written.
+    if (r == SKY_OK)
+        std::memcpy(static_cast<void*>(out_frames), &f, offsetof(SkyExportedFrames, layers));
+    return r;
+}
+
+SkyResult sky_client_subscribe_vulkan_layers(SkyClient* client, uint32_t layers, SkyExportedFrames* out_frames)
+{
+    if (!client)
+        return SKY_ERR_ARGUMENT;
+    if (!out_frames)
+        return fail(client, SKY_ERR_ARGUMENT, "out_frames is null");
+    if (layers >= (1u << SKY_LAYER_COUNT))
+        return fail(client, SKY_ERR_ARGUMENT, "layers must be a set of (1u << SKY_LAYER_*)");
+    SkyExportedFrames f{};
+    SkyResult r = subscribeVulkan(client, layers | (1u << SKY_LAYER_DISPLAY), f);
+    if (r == SKY_OK)
+        *out_frames = f;
+    return r;
 }
 
 }  // extern "C"

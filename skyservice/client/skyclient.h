@@ -151,12 +151,27 @@ typedef struct SkyExportedFrames
                                     slot is published in the ring only after the GPU finished it */
     uint8_t device_uuid[16];     /* the exporting VkPhysicalDevice's deviceUUID: import on the same */
     uint8_t driver_uuid[16];
+    /* Appended fields (sky_client_subscribe_vulkan, for programs built before them, writes none of these).
+     * The compositing layers of sky_client_subscribe_vulkan_layers, as layer[SKY_LAYER_*][slot]: SKY is
+     * VK_FORMAT_R16G16B16A16_SFLOAT linear, CLOUDS R16G16B16A16_SFLOAT premultiplied + alpha, DEPTH
+     * VK_FORMAT_R32G32_SFLOAT metres (front, weighted distance); shm_layout.h says what each holds. Same
+     * size as `frame`, the frame in the top-left corner. memory_fd is -1 for a layer not exported, and
+     * always in layer[SKY_LAYER_DISPLAY] (the display layer is `frame`). */
+    uint32_t layers;             /* the layers exported to this client, bit k = SKY_LAYER_k (display always) */
+    SkyExportedImage layer[SKY_LAYER_COUNT][SKY_MAX_EXPORTED_SLOTS];
 } SkyExportedFrames;
 
 /* Subscribes to the zero-copy transport and receives the fds. The ring's sequence locks and
  * latest-slot fields (the shared-memory header, mapped by this call too) say which exported slot
  * holds which frame: acquire/release work the same, with SkyFrame.pixels null. */
 SkyResult sky_client_subscribe_vulkan(SkyClient* client, SkyExportedFrames* out_frames);
+/* The same, with compositing layers exported as well: `layers` is a bit set of (1u << SKY_LAYER_*) (the
+ * display layer is always exported). Each costs GPU time (and memory: an image per slot at the service's
+ * largest frame size) only while some subscriber asks for it; it is copied on the GPU, never read back,
+ * unless a shared-memory subscriber asks for it too. Every frame published after this call returned
+ * holds the layers in its slot's images. May be called again to add layers: each call sends fds for the
+ * layers it asks for (and the frame images again). */
+SkyResult sky_client_subscribe_vulkan_layers(SkyClient* client, uint32_t layers, SkyExportedFrames* out_frames);
 
 #ifdef __cplusplus
 }

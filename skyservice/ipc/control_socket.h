@@ -23,7 +23,7 @@ struct ControlSocketLimits
     size_t maxLineBytes = 65536;        ///< longer lines are answered "too_long" and skipped to the newline
     size_t maxQueuedReplyBytes = 1 << 20;  ///< a client with more unread replies is disconnected
     uint32_t maxQueuedReplies = 4096;   ///< … or more unsent replies (each one is a queue entry)
-    uint32_t maxQueuedFds = 24;         ///< … or more unsent file descriptors (8 Vulkan subscribe replies)
+    uint32_t maxQueuedFds = 24;         ///< … or more unsent file descriptors (a Vulkan subscribe reply: <= 21)
     uint32_t acceptBackoffMs = 100;     ///< out of descriptors (EMFILE) on accept: no accept for this long
     uint32_t maxConsecutiveTooLong = 8; ///< then the client is disconnected
     uint32_t maxClients = 64;           ///< further connections are accepted, told "busy", and closed

@@ -254,7 +254,7 @@ bool parseFields(const json& j, const ProtocolLimits& limits, Request& out, Chec
         else
             return check.fail("out_of_range", "transport",
                               "transport '" + transport + "' is not one of shm, vulkan, files");
-        if (out.transport == Transport::Shm && j.contains("layers"))
+        if (out.transport != Transport::Files && j.contains("layers"))
         {
             if (!j["layers"].is_array() || j["layers"].empty() || j["layers"].size() > SKY_LAYER_COUNT)
                 return check.fail("bad_type", "layers", "layers must be an array of 1 to 4 of display, sky, clouds, depth");

@@ -62,7 +62,7 @@ struct Request
     std::string path;
     // subscribe
     Transport transport = Transport::Shm;
-    uint32_t layers = 1u << SKY_LAYER_DISPLAY;  ///< shm: the layers asked for, bit k = SKY_LAYER_k (shm_layout.h)
+    uint32_t layers = 1u << SKY_LAYER_DISPLAY;  ///< shm, vulkan: the layers asked for, bit k = SKY_LAYER_k
     uint32_t every = 1;
     std::string fileFormat = "png";  ///< png | exr | both
 };

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/frame_export.h"
 
+#include "skyservice/render/frame_export_internal.h"
+
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <mutex>
 
@@ -12,17 +15,25 @@ namespace sky
 namespace
 {
 
-constexpr VkExternalMemoryHandleTypeFlagBits kMemoryHandle = VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT;
-constexpr VkExternalSemaphoreHandleTypeFlagBits kSemaphoreHandle = VK_EXTERNAL_SEMAPHORE_HANDLE_TYPE_OPAQUE_FD_BIT;
-
 std::string formatName(VkFormat format)
 {
-    return format == VK_FORMAT_R8G8B8A8_UNORM ? "R8G8B8A8_UNORM" : format == VK_FORMAT_R32_SFLOAT ? "R32_SFLOAT"
-                                                                                                  : std::to_string(int(format));
+    switch (format)
+    {
+    case VK_FORMAT_R8G8B8A8_UNORM: return "R8G8B8A8_UNORM";
+    case VK_FORMAT_R32_SFLOAT: return "R32_SFLOAT";
+    case VK_FORMAT_R16G16B16A16_SFLOAT: return "R16G16B16A16_SFLOAT";
+    case VK_FORMAT_R32G32_SFLOAT: return "R32G32_SFLOAT";
+    default: return std::to_string(int(format));
+    }
 }
 
-// Whether images of this format, tiling and usage can be exported as opaque fds (and need a dedicated
-// allocation: we always make one, so only exportability matters).
+}  // namespace
+
+namespace exportdetail
+{
+
+// Exportable as opaque fds with this format, tiling and usage (and needing a dedicated allocation: we
+// always make one, so only exportability matters).
 SkyStatus checkExportable(const Context& ctx, VkFormat format)
 {
     VkPhysicalDeviceExternalImageFormatInfo externalInfo = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_IMAGE_FORMAT_INFO};
@@ -139,6 +150,38 @@ void destroyExportedImage(Renderer& r, ExportedImage& image)
     image = ExportedImage{};
 }
 
+nlohmann::json imageJson(const ExportedImage& image)
+{
+    return {{"allocation_bytes", uint64_t(image.allocationBytes)},
+            {"memory_type_bits", image.memoryTypeBits},
+            {"vk_format", uint32_t(image.format)},
+            {"width", image.width},
+            {"height", image.height},
+            {"linear_tiling", false},
+            {"row_pitch", 0}};
+}
+
+VkResult exportMemoryFd(const Context& ctx, const ExportedImage& image, std::vector<int>& fds)
+{
+    VkMemoryGetFdInfoKHR info = {VK_STRUCTURE_TYPE_MEMORY_GET_FD_INFO_KHR};
+    info.memory = image.memory;
+    info.handleType = kMemoryHandle;
+    int fd = -1;
+    VkResult res = ctx.getMemoryFd(ctx.device, &info, &fd);
+    if (res == VK_SUCCESS)
+        fds.push_back(fd);
+    return res;
+}
+
+}  // namespace exportdetail
+
+namespace
+{
+
+using namespace exportdetail;
+
+constexpr VkExternalSemaphoreHandleTypeFlagBits kSemaphoreHandle = VK_EXTERNAL_SEMAPHORE_HANDLE_TYPE_OPAQUE_FD_BIT;
+
 // The timeline semaphore, when the device can export one (never on lavapipe: no external_semaphore_fd).
 SkyStatus createExportedTimeline(const Context& ctx, VkSemaphore& out)
 {
@@ -189,13 +232,22 @@ VkImageMemoryBarrier2 imageBarrier(VkImage image, const Access& from, const Acce
     return b;
 }
 
-void barriers(VkCommandBuffer cmd, const std::vector<VkImageMemoryBarrier2>& images)
+// A fixed-size list of barriers: exportFrame runs every frame and allocates nothing.
+struct BarrierList
 {
-    VkDependencyInfo dep = {VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.imageMemoryBarrierCount = uint32_t(images.size());
-    dep.pImageMemoryBarriers = images.data();
-    vkCmdPipelineBarrier2(cmd, &dep);
-}
+    std::array<VkImageMemoryBarrier2, 2 * kMaxCopyJobs> items;
+    uint32_t count = 0;
+    void add(const VkImageMemoryBarrier2& b) { items[count++] = b; }
+    void record(VkCommandBuffer cmd) const
+    {
+        if (count == 0)
+            return;
+        VkDependencyInfo dep = {VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.imageMemoryBarrierCount = count;
+        dep.pImageMemoryBarriers = items.data();
+        vkCmdPipelineBarrier2(cmd, &dep);
+    }
+};
 
 SkyStatus waitSlot(const Context& ctx, FrameExport& e, uint32_t slot)
 {
@@ -217,17 +269,6 @@ std::string hex(const uint8_t* bytes, size_t count)
         s += digits;
     }
     return s;
-}
-
-nlohmann::json imageJson(const ExportedImage& image)
-{
-    return {{"allocation_bytes", uint64_t(image.allocationBytes)},
-            {"memory_type_bits", image.memoryTypeBits},
-            {"vk_format", uint32_t(image.format)},
-            {"width", image.width},
-            {"height", image.height},
-            {"linear_tiling", false},
-            {"row_pitch", 0}};
 }
 
 }  // namespace
@@ -324,10 +365,12 @@ void destroyFrameExport(Renderer& r, FrameExport& e)
         destroyExportedImage(r, image);
     for (ExportedImage& image : e.shadows)
         destroyExportedImage(r, image);
+    destroyLayers(r, e);
     e = FrameExport{};
 }
 
-SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frameId, const RenderResult& frame)
+SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frameId, const RenderResult& frame,
+                      uint32_t layers)
 {
     const Context& ctx = r.ctx;
     if (slot >= e.slots)
@@ -350,6 +393,12 @@ SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frame
                                   VK_ERROR_UNKNOWN);
     if (e.timeline && frameId <= e.lastSignalled)
         return SkyStatus::failure("frame export: frame ids must increase (timeline semaphore)", VK_ERROR_UNKNOWN);
+    std::array<CopyJob, kMaxCopyJobs> jobs;
+    uint32_t jobCount = 0;
+    jobs[jobCount++] = {r.composite.displayImage.image, &e.frames[slot], frame.width, frame.height, false};
+    if (shadowSize > 0)  // the shadow pass writes rgba16f: its red channel (transmittance) is blitted
+        jobs[jobCount++] = {r.shadowPass.image.image, &e.shadows[slot], shadowSize, shadowSize, true};
+    SKY_TRY(layerCopies(r, e, slot, layers, frame, jobs.data(), jobCount));
     SKY_TRY(waitSlot(ctx, e, slot));
 
     VkCommandBuffer cmd = e.commands[slot];
@@ -361,68 +410,62 @@ SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frame
     // Ownership of the exported images: they are handed to the importers (VK_QUEUE_FAMILY_EXTERNAL) in
     // GENERAL layout after each copy and taken back before the next; layout changes are separate barriers
     // so that release and acquire never transition (the importers acquire GENERAL -> GENERAL).
-    const bool withShadow = shadowSize > 0;
     const uint32_t family = ctx.queueFamily, external = VK_QUEUE_FAMILY_EXTERNAL, ignored = VK_QUEUE_FAMILY_IGNORED;
     const VkPipelineStageFlags2 transfer = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, all = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
     const VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL, srcOpt = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                         dstOpt = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    struct Pair
+    BarrierList acquire, toTransfer, toGeneral, release;
+    for (uint32_t i = 0; i < jobCount; ++i)
     {
-        VkImage source;
-        ExportedImage* target;
-    };
-    std::vector<Pair> pairs = {{r.composite.displayImage.image, &e.frames[slot]}};
-    if (withShadow)
-        pairs.push_back({r.shadowPass.image.image, &e.shadows[slot]});
-
-    std::vector<VkImageMemoryBarrier2> acquire, toTransfer, toGeneral, release;
-    for (const Pair& p : pairs)
-    {
+        const CopyJob& p = jobs[i];
         // The renderer's images: its last writes (compute, transfer) before our reads.
-        toTransfer.push_back(imageBarrier(p.source, {all, VK_ACCESS_2_MEMORY_WRITE_BIT, general, ignored},
-                                          {transfer, VK_ACCESS_2_TRANSFER_READ_BIT, srcOpt, ignored}));
+        toTransfer.add(imageBarrier(p.source, {all, VK_ACCESS_2_MEMORY_WRITE_BIT, general, ignored},
+                                    {transfer, VK_ACCESS_2_TRANSFER_READ_BIT, srcOpt, ignored}));
         // Our reads before the renderer's next writes (write-after-read on the same queue).
-        toGeneral.push_back(imageBarrier(p.source, {transfer, VK_ACCESS_2_NONE, srcOpt, ignored},
-                                         {all, VK_ACCESS_2_NONE, general, ignored}));
+        toGeneral.add(imageBarrier(p.source, {transfer, VK_ACCESS_2_NONE, srcOpt, ignored},
+                                   {all, VK_ACCESS_2_NONE, general, ignored}));
         if (p.target->general)
         {
-            acquire.push_back(imageBarrier(p.target->image, {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, general, external},
-                                           {transfer, VK_ACCESS_2_NONE, general, family}));
-            toTransfer.push_back(imageBarrier(p.target->image, {transfer, VK_ACCESS_2_NONE, general, ignored},
-                                              {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored}));
+            acquire.add(imageBarrier(p.target->image, {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, general, external},
+                                     {transfer, VK_ACCESS_2_NONE, general, family}));
+            toTransfer.add(imageBarrier(p.target->image, {transfer, VK_ACCESS_2_NONE, general, ignored},
+                                        {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored}));
         }
         else  // first use: nothing to keep, nothing owned elsewhere yet
-            toTransfer.push_back(imageBarrier(p.target->image, {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
-                                                                VK_IMAGE_LAYOUT_UNDEFINED, ignored},
-                                              {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored}));
+            toTransfer.add(imageBarrier(p.target->image, {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                                                          VK_IMAGE_LAYOUT_UNDEFINED, ignored},
+                                        {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored}));
         p.target->general = true;
-        toGeneral.push_back(imageBarrier(p.target->image, {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored},
-                                         {all, VK_ACCESS_2_MEMORY_READ_BIT, general, ignored}));
-        release.push_back(imageBarrier(p.target->image, {all, VK_ACCESS_2_NONE, general, family},
-                                       {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, general, external}));
+        toGeneral.add(imageBarrier(p.target->image, {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored},
+                                   {all, VK_ACCESS_2_MEMORY_READ_BIT, general, ignored}));
+        release.add(imageBarrier(p.target->image, {all, VK_ACCESS_2_NONE, general, family},
+                                 {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, general, external}));
     }
 
-    if (!acquire.empty())
-        barriers(cmd, acquire);
-    barriers(cmd, toTransfer);
-    VkImageCopy copy = {};
-    copy.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.dstSubresource = copy.srcSubresource;
-    copy.extent = {frame.width, frame.height, 1};
-    vkCmdCopyImage(cmd, r.composite.displayImage.image, srcOpt, e.frames[slot].image, dstOpt, 1, &copy);
-    if (withShadow)
+    acquire.record(cmd);
+    toTransfer.record(cmd);
+    for (uint32_t i = 0; i < jobCount; ++i)
     {
-        // Same size, NEAREST: an exact half -> float conversion of the red channel (transmittance).
-        VkImageBlit blit = {};
-        blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        blit.dstSubresource = blit.srcSubresource;
-        blit.srcOffsets[1] = {int32_t(shadowSize), int32_t(shadowSize), 1};
-        blit.dstOffsets[1] = blit.srcOffsets[1];
-        vkCmdBlitImage(cmd, r.shadowPass.image.image, srcOpt, e.shadows[slot].image, dstOpt, 1, &blit,
-                       VK_FILTER_NEAREST);
+        const CopyJob& p = jobs[i];
+        if (p.blit)
+        {
+            // Same size, NEAREST: an exact half -> float conversion of the red channel.
+            VkImageBlit blit = {};
+            blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            blit.dstSubresource = blit.srcSubresource;
+            blit.srcOffsets[1] = {int32_t(p.width), int32_t(p.height), 1};
+            blit.dstOffsets[1] = blit.srcOffsets[1];
+            vkCmdBlitImage(cmd, p.source, srcOpt, p.target->image, dstOpt, 1, &blit, VK_FILTER_NEAREST);
+            continue;
+        }
+        VkImageCopy copy = {};  // same format: the renderer's values exactly
+        copy.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.dstSubresource = copy.srcSubresource;
+        copy.extent = {p.width, p.height, 1};
+        vkCmdCopyImage(cmd, p.source, srcOpt, p.target->image, dstOpt, 1, &copy);
     }
-    barriers(cmd, toGeneral);
-    barriers(cmd, release);
+    toGeneral.record(cmd);
+    release.record(cmd);
     VK_TRY(vkEndCommandBuffer(cmd));
 
     VkTimelineSemaphoreSubmitInfo timelineInfo = {VK_STRUCTURE_TYPE_TIMELINE_SEMAPHORE_SUBMIT_INFO};
@@ -447,8 +490,8 @@ SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frame
     return waitSlot(ctx, e, slot);  // no exportable semaphore: complete before the ring publishes the slot
 }
 
-bool describeFrameExport(Renderer& r, const FrameExport& e, nlohmann::json& description, std::vector<int>& fds,
-                         std::string& error)
+bool describeFrameExport(Renderer& r, const FrameExport& e, uint32_t layers, nlohmann::json& description,
+                         std::vector<int>& fds, std::string& error)
 {
     const Context& ctx = r.ctx;
     fds.clear();
@@ -465,16 +508,6 @@ bool describeFrameExport(Renderer& r, const FrameExport& e, nlohmann::json& desc
         error = what + " failed: " + vkResultName(res);
         return false;
     };
-    auto exportMemory = [&](const ExportedImage& image) {
-        VkMemoryGetFdInfoKHR info = {VK_STRUCTURE_TYPE_MEMORY_GET_FD_INFO_KHR};
-        info.memory = image.memory;
-        info.handleType = kMemoryHandle;
-        int fd = -1;
-        VkResult res = ctx.getMemoryFd(ctx.device, &info, &fd);
-        if (res == VK_SUCCESS)
-            fds.push_back(fd);
-        return res;
-    };
     nlohmann::json images = nlohmann::json::array();
     for (uint32_t i = 0; i < e.slots; ++i)
     {
@@ -483,11 +516,18 @@ bool describeFrameExport(Renderer& r, const FrameExport& e, nlohmann::json& desc
         images.push_back(std::move(entry));
     }
     for (const ExportedImage& image : e.frames)
-        if (VkResult res = exportMemory(image); res != VK_SUCCESS)
+        if (VkResult res = exportMemoryFd(ctx, image, fds); res != VK_SUCCESS)
             return fail("vkGetMemoryFdKHR (" + image.name + ")", res);
     for (const ExportedImage& image : e.shadows)
-        if (VkResult res = exportMemory(image); res != VK_SUCCESS)
+        if (VkResult res = exportMemoryFd(ctx, image, fds); res != VK_SUCCESS)
             return fail("vkGetMemoryFdKHR (" + image.name + ")", res);
+    if (!describeLayers(ctx, e, layers, images, fds, error))
+    {
+        for (int fd : fds)
+            close(fd);
+        fds.clear();
+        return false;
+    }
     if (e.timeline)
     {
         VkSemaphoreGetFdInfoKHR info = {VK_STRUCTURE_TYPE_SEMAPHORE_GET_FD_INFO_KHR};

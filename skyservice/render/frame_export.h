@@ -5,8 +5,9 @@
 //
 // Usage (the service, once per device; slots = the shared-memory ring's slot count):
 //   FrameExport e;  createFrameExport(r, e, slots, maxWidth, maxHeight, maxShadowSize)
-//   per frame:      renderView(r, ...) -> exportFrame(r, e, slot, frameId, result) -> publish slot in the ring
-//   per subscriber: describeFrameExport(r, e, json, fds, error) -> sendmsg(json line + SCM_RIGHTS fds) -> close fds
+//   per frame:      renderView(r, ...) -> exportFrame(r, e, slot, frameId, result, layers) -> publish slot in the ring
+//   per subscriber: ensureExportedLayers(r, e, layers) -> describeFrameExport(r, e, layers, json, fds, error)
+//                   -> sendmsg(json line + SCM_RIGHTS fds) -> close fds
 //   destroyFrameExport(r, e)
 //
 // Images: slot i has a frame image (VK_FORMAT_R8G8B8A8_UNORM holding the display frame's sRGB-encoded
@@ -34,6 +35,12 @@
 //    for value >= frame_id before reading the slot of frame_id. A trailing barrier orders the copy's
 //    reads before the renderer's next writes to its own images (same queue, submission order).
 // In both cases a client must finish reading a slot within (slots - 1) frame intervals, as for shm.
+//
+// Compositing layers (ExportLayer): besides the display frame a slot can carry the sky, clouds and depth
+// layers, each an exported image per slot at maxWidth x maxHeight, made when a subscriber first asks for
+// the layer (ensureExportedLayers, off the frame path) and kept until destroyFrameExport. exportFrame
+// copies the layers it is told to (the renderer drew them: kRead* or kDraw* in ViewRequest::readback)
+// with vkCmdCopyImage in the same submission as the display frame: same format, exact values.
 // Tested (tests/export): lavapipe (fence path) and an NVIDIA H100 (timeline semaphore path), each with a
 // second process importing through skyclient_vulkan and reading bytes identical to renderView's.
 #pragma once
@@ -42,6 +49,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -51,6 +59,21 @@ namespace sky
 /// Usage of every exported image (the importer must create its VkImage with exactly these).
 constexpr VkImageUsageFlags kFrameExportUsage =
     VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+
+/// The compositing layers an export can carry besides the display frame (skyservice/ipc/PROTOCOL.md
+/// "Compositing layers"), in the order their fds are sent. A layer set has bit (1u << k) for layer k.
+enum ExportLayer : uint32_t
+{
+    kExportSky = 0,     ///< VK_FORMAT_R16G16B16A16_SFLOAT: the sky without clouds, linear, pre-exposed
+    kExportClouds = 1,  ///< VK_FORMAT_R16G16B16A16_SFLOAT: the clouds, premultiplied linear + alpha
+    kExportDepth = 2,   ///< VK_FORMAT_R32G32_SFLOAT: the cloud's front, then its weighted distance (m)
+    kExportLayerCount = 3,
+};
+constexpr uint32_t kExportAllLayers = (1u << kExportLayerCount) - 1u;
+
+/// "sky", "clouds", "depth" (the protocol's names); the format of the layer's images.
+const char* exportLayerName(uint32_t layer);
+VkFormat exportLayerFormat(uint32_t layer);
 
 /// One exportable image with its own (dedicated, exportable) allocation.
 struct ExportedImage
@@ -74,6 +97,8 @@ struct FrameExport
     uint32_t maxWidth = 0, maxHeight = 0, maxShadowSize = 0;
     std::vector<ExportedImage> frames;   ///< one per slot, R8G8B8A8_UNORM (sRGB-encoded bytes)
     std::vector<ExportedImage> shadows;  ///< one per slot, R32_SFLOAT; empty when maxShadowSize == 0
+    /// Per ExportLayer, one image per slot (exportLayerFormat, maxWidth x maxHeight); empty until asked for.
+    std::array<std::vector<ExportedImage>, kExportLayerCount> layers;
     VkSemaphore timeline = VK_NULL_HANDLE;  ///< exportable timeline semaphore, or null (lavapipe)
     uint64_t lastSignalled = 0;             ///< highest value submitted for the timeline semaphore
     VkCommandPool pool = VK_NULL_HANDLE;
@@ -102,6 +127,16 @@ SkyStatus createFrameExport(Renderer& r, FrameExport& e, uint32_t slots, uint32_
 void destroyFrameExport(Renderer& r, FrameExport& e);
 
 /**
+ * Make the exported images of compositing layers (every slot), for the layers not made yet.
+ *
+ * @param[in,out] r the renderer; the allocations are registered in r.memory as "export sky i" etc.
+ * @param[in,out] e a created ring.
+ * @param[in] layers the layer set (bit k = ExportLayer k).
+ * @return success, or a failure naming the format the device cannot export; layers made before stay.
+ **********************************************************************/
+SkyStatus ensureExportedLayers(Renderer& r, FrameExport& e, uint32_t layers);
+
+/**
  * Copy the last rendered frame into a slot.
  *
  * @param[in,out] r the renderer, right after renderView produced `frame` (r.composite.displayImage and, when
@@ -110,27 +145,42 @@ void destroyFrameExport(Renderer& r, FrameExport& e);
  * @param[in] slot which slot, < e.slots.
  * @param[in] frameId the frame's id (> every earlier one): the timeline value signalled, when exportable.
  * @param[in] frame the result of that renderView (width, height, shadowMapSize).
+ * @param[in] layers the compositing layers to copy as well (bit k = ExportLayer k); those without
+ *   exported images yet (ensureExportedLayers) are skipped. The renderer must have drawn each of them
+ *   this frame (ViewRequest::readback with kReadSky/kDrawSky etc.).
  * @return success when the copy is done (no exportable semaphore) or submitted with the signal (with
- *   one); a failure when the frame or shadow map is larger than the ring or the GPU failed.
+ *   one); a failure when the frame or shadow map is larger than the ring, a layer asked for was not
+ *   drawn, or the GPU failed.
  **********************************************************************/
-SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frameId, const RenderResult& frame);
+SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frameId, const RenderResult& frame,
+                      uint32_t layers = 0);
 
 /**
  * What one subscriber gets: the vulkan `subscribed` reply's extra fields (PROTOCOL.md) and new fds.
  *
  * @param[in] r the renderer.
  * @param[in] e the ring.
+ * @param[in] layers the compositing layers this subscriber gets (bit k = ExportLayer k); each must have
+ *   its images (ensureExportedLayers).
  * @param[out] description {"images":[{allocation_bytes, memory_type_bits, vk_format, width, height,
- *   linear_tiling, row_pitch, shadow:{the same fields, or null without shadow maps}}, ... one per slot],
+ *   linear_tiling, row_pitch, shadow:{the same fields, or null without shadow maps},
+ *   layers:{"sky"|"clouds"|"depth":{the same fields}, ... the layers asked for}}, ... one per slot],
  *   "timeline_semaphore":bool, "device_uuid":"32 hex digits", "driver_uuid":"32 hex digits"}; the caller
  *   adds type/transport/shm_name/slots/total_bytes.
  * @param[out] fds freshly exported fds (vkGetMemoryFdKHR), in the SCM_RIGHTS order of PROTOCOL.md: the
- *   frame images of slots 0..n-1, the shadow images of slots 0..n-1 (when any), then the semaphore (when
- *   "timeline_semaphore"). The caller sends and then closes them.
+ *   frame images of slots 0..n-1, the shadow images of slots 0..n-1 (when any), for each layer asked for
+ *   in ExportLayer order its images of slots 0..n-1, then the semaphore (when "timeline_semaphore"). The
+ *   caller sends and then closes them.
  * @param[out] error why it failed (fds already made are closed and `fds` emptied).
  * @return true on success.
  **********************************************************************/
-bool describeFrameExport(Renderer& r, const FrameExport& e, nlohmann::json& description, std::vector<int>& fds,
-                         std::string& error);
+bool describeFrameExport(Renderer& r, const FrameExport& e, uint32_t layers, nlohmann::json& description,
+                         std::vector<int>& fds, std::string& error);
+/// The same without compositing layers.
+inline bool describeFrameExport(Renderer& r, const FrameExport& e, nlohmann::json& description, std::vector<int>& fds,
+                                std::string& error)
+{
+    return describeFrameExport(r, e, 0u, description, fds, error);
+}
 
 }  // namespace sky

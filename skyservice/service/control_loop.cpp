@@ -63,6 +63,7 @@ ControlSocketServer::Handlers ControlLoop::handlers()
         std::lock_guard<std::mutex> lock(c_.state->mutex);
         std::erase_if(c_.state->files, [client](const FilesSubscription& f) { return f.client == client; });
         c_.state->shmLayers.erase(client);
+        c_.state->vulkanLayers.erase(client);
     };
     return h;
 }
@@ -294,7 +295,7 @@ void ControlLoop::subscribe(ClientId client, const Request& request)
         return;
     }
     case Transport::Vulkan:
-        queueJob(client, request, RenderJob{RenderJob::SubscribeVulkan, client, request.id, ""});
+        queueJob(client, request, RenderJob{RenderJob::SubscribeVulkan, client, request.id, "", request.layers});
         return;
     case Transport::Files:
     {
@@ -352,7 +353,13 @@ void ControlLoop::queueJob(ClientId client, const Request& request, RenderJob jo
         queued = size_t(
             std::count_if(s.jobs.begin(), s.jobs.end(), [client](const RenderJob& j) { return j.client == client; }));
         if (queued < c_.maxQueuedJobsPerClient)
+        {
+            // A vulkan subscriber's layers count from now on (frames draw them before its job makes their
+            // exported images); this thread's disconnect handler drops them, whatever the job's fate.
+            if (job.kind == RenderJob::SubscribeVulkan)
+                s.vulkanLayers[client] |= job.layers & ~(1u << SKY_LAYER_DISPLAY);
             s.jobs.push_back(std::move(job));
+        }
     }
     if (queued >= c_.maxQueuedJobsPerClient)
     {

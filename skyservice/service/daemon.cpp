@@ -356,6 +356,9 @@ int runDaemon(const DaemonOptions& options)
     // wanders by tens of MB (tests/service soak: 242-283 MB over 4000 frames with weather swaps;
     // with this setting it tracks the live memory).
     mallopt(M_MMAP_THRESHOLD, 1 << 20);
+    // Before the Daemon exists: its Renderer starts the weather worker thread when constructed, and a
+    // thread that leaves SIGTERM unblocked takes it (the default action kills the process uncleanly).
+    blockServiceSignals();
     auto daemon = std::make_unique<Daemon>(options);  // the Renderer is large: not on the stack
     return daemon->run();
 }

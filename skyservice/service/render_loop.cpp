@@ -71,6 +71,7 @@ struct InFlightFrame
     SteadyClock::time_point start;
     DrawnWeather drawn;        ///< the weather this frame drew (the schedule may move on before it is published)
     uint32_t layers = 0;       ///< shm layers to publish (bit k = SKY_LAYER_k)
+    uint32_t exportLayers = 0; ///< layers the zero-copy export copies (vulkan subscribers'), same bits
     bool copyPixels = false;   ///< files are written from this frame: its pixels go to `result` too
     std::vector<FilesSubscription> files;
 };
@@ -94,7 +95,7 @@ struct RenderLoop::Impl
     void run();
     void startFrame(uint64_t id, ViewRequest request, const SimClock& clock, double simTimeS,
                     const WeatherState& weather, const QualitySettings& quality,
-                    std::vector<FilesSubscription> files, uint32_t layers);
+                    std::vector<FilesSubscription> files, uint32_t layers, uint32_t exportLayers);
     void completeFrame(InFlightFrame& frame);
     void completeInFlight()
     {
@@ -105,6 +106,14 @@ struct RenderLoop::Impl
         completeFrame(frame);
     }
     void frameDone(uint64_t id, const SkyStatus& status, double ms);
+    /// After a failed vulkan subscribe: the client's layers that have no exported images are not drawn for it.
+    void dropUnexportedLayers(ClientId client)
+    {
+        std::lock_guard<std::mutex> lock(setup.state->mutex);
+        auto it = setup.state->vulkanLayers.find(client);
+        if (it != setup.state->vulkanLayers.end())
+            it->second &= exporter.layersMade();
+    }
     void doJob(const RenderJob& job);
     bool writeFiles(const std::string& prefix, const std::string& format, std::string& error);
     void reply(ClientId client, std::string line, std::vector<int> fds = {})
@@ -198,6 +207,9 @@ void RenderLoop::Impl::run()
         uint32_t layers = 0;
         for (const auto& [client, bits] : s.shmLayers)
             layers |= bits;
+        uint32_t exportLayers = 0;
+        for (const auto& [client, bits] : s.vulkanLayers)
+            exportLayers |= bits;
         // The display picture goes through the ring unless every reader imports the exported images:
         // then the ring carries each frame's facts and the GPU's copy into the export is all there is.
         if (!exporter.active() || !s.shmLayers.empty())
@@ -213,13 +225,13 @@ void RenderLoop::Impl::run()
         // exported before the next one overwrites that image.
         if (exporter.active())
             completeInFlight();
-        startFrame(id, request, clock, simTimeS, weather, quality, std::move(files), layers);
+        startFrame(id, request, clock, simTimeS, weather, quality, std::move(files), layers, exportLayers);
     }
 }
 
 void RenderLoop::Impl::startFrame(uint64_t id, ViewRequest request, const SimClock& clock, double simTimeS,
                                   const WeatherState& weather, const QualitySettings& quality,
-                                  std::vector<FilesSubscription> files, uint32_t layers)
+                                  std::vector<FilesSubscription> files, uint32_t layers, uint32_t exportLayers)
 {
     Renderer& r = *setup.renderer;
     InFlightFrame frame;
@@ -244,11 +256,20 @@ void RenderLoop::Impl::startFrame(uint64_t id, ViewRequest request, const SimClo
         request.readback |= kReadCloudLayer;
     if (layers & (1u << SKY_LAYER_DEPTH))
         request.readback |= kReadDepthLayer;
+    // Vulkan subscribers' layers are drawn on the GPU and copied into the export; only those a shm
+    // subscriber asks for as well are read back (kRead* above).
+    if (exportLayers & (1u << SKY_LAYER_SKY))
+        request.readback |= kDrawSky;
+    if (exportLayers & (1u << SKY_LAYER_CLOUDS))
+        request.readback |= kDrawCloudLayer;
+    if (exportLayers & (1u << SKY_LAYER_DEPTH))
+        request.readback |= kDrawDepthLayer;
     if (writesFiles)
         request.readback |= kReadEverything;
     frame.request = request;
     frame.simTimeS = simTimeS;
     frame.layers = layers;
+    frame.exportLayers = exportLayers;
     frame.copyPixels = writesFiles;
     frame.files = std::move(files);
     SkyStatus status = submitView(r, request, frameQuality, frame.ticket);
@@ -302,7 +323,7 @@ void RenderLoop::Impl::completeFrame(InFlightFrame& frame)
             f.shadowId = result.shadowMapId;
         }
         uint32_t slot = setup.ring->beginSlot();
-        if (exporter.active() && !exporter.exportFrame(r, slot, frame.id, result, error))
+        if (exporter.active() && !exporter.exportFrame(r, slot, frame.id, result, frame.exportLayers, error))
             SKY_LOG_WARN("frame %llu: zero-copy export: %s", (unsigned long long)frame.id, error.c_str());
         if (!setup.ring->endSlot(f, error))
             SKY_LOG_WARN("frame %llu: not published: %s", (unsigned long long)frame.id, error.c_str());
@@ -425,16 +446,24 @@ void RenderLoop::Impl::doJob(const RenderJob& job)
         !exporter.create(r, setup.exportSlots, setup.exportMaxWidth, setup.exportMaxHeight, setup.exportShadowSize, error))
     {
         SKY_LOG_WARN("vulkan subscribe: %s", error.c_str());
+        dropUnexportedLayers(job.client);
         reply(job.client, failedLine(job.requestId, "the device cannot export frames: " + error));
         return;
     }
     nlohmann::json body;
     std::vector<int> fds;
-    if (!exporter.describe(r, body, fds, error))
+    if (!exporter.describe(r, job.layers, body, fds, error))
     {
+        SKY_LOG_WARN("vulkan subscribe: %s", error.c_str());
+        dropUnexportedLayers(job.client);
         reply(job.client, failedLine(job.requestId, error));
         return;
     }
+    nlohmann::json layers = nlohmann::json::array();
+    for (const char* name : {"display", "sky", "clouds", "depth"})
+        if (((job.layers | (1u << SKY_LAYER_DISPLAY)) & layerBit(name)) != 0)
+            layers.push_back(name);
+    body["layers"] = std::move(layers);
     body["type"] = "subscribed";
     body["transport"] = "vulkan";
     body["shm_name"] = setup.ring->name();

@@ -97,6 +97,7 @@ struct RenderJob
     ClientId client = 0;
     nlohmann::json requestId;
     std::string path;
+    uint32_t layers = 0;  ///< SubscribeVulkan: the layers asked for (bit k = SKY_LAYER_k)
 };
 
 /// A reply line made on the render thread, sent by the control loop (the only thread that sends).
@@ -124,6 +125,10 @@ struct ServiceState
     /// frames draw and publish the union; the display layer is published always (while some
     /// client is subscribed here, or no client imports the exported images).
     std::map<ClientId, uint32_t> shmLayers;
+    /// Vulkan subscribers' compositing layers (SKY_LAYER_SKY/CLOUDS/DEPTH bits), registered when the
+    /// subscribe is queued and dropped on disconnect: frames draw them on the GPU and the export copies
+    /// them; only layers some shm subscriber asks for as well are read back.
+    std::map<ClientId, uint32_t> vulkanLayers;
     std::deque<RenderJob> jobs;
     bool stop = false;
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/service/vulkan_export.h"
 
+#include "skyservice/ipc/shm_layout.h"
+
 #if __has_include("skyservice/render/frame_export.h")
 #include "skyservice/render/frame_export.h"
 #define SKY_SERVICE_HAS_FRAME_EXPORT 1
@@ -41,18 +43,53 @@ bool VulkanExport::create(Renderer& r, uint32_t slots, uint32_t maxWidth, uint32
     return true;
 }
 
-bool VulkanExport::exportFrame(Renderer& r, uint32_t slot, uint64_t frameId, const RenderResult& result,
-                               std::string& error)
+namespace
 {
-    SkyStatus status = sky::exportFrame(r, impl_->e, slot, frameId, result);
+
+// SKY_LAYER_* (the protocol's order: display, sky, clouds, depth) to ExportLayer bits and back.
+constexpr std::pair<uint32_t, uint32_t> kLayerMap[] = {
+    {SKY_LAYER_SKY, kExportSky}, {SKY_LAYER_CLOUDS, kExportClouds}, {SKY_LAYER_DEPTH, kExportDepth}};
+
+uint32_t exportLayersOf(uint32_t skyLayers)
+{
+    uint32_t bits = 0;
+    for (const auto& [sky, exported] : kLayerMap)
+        if (skyLayers & (1u << sky))
+            bits |= 1u << exported;
+    return bits;
+}
+
+}  // namespace
+
+bool VulkanExport::exportFrame(Renderer& r, uint32_t slot, uint64_t frameId, const RenderResult& result,
+                               uint32_t layers, std::string& error)
+{
+    SkyStatus status = sky::exportFrame(r, impl_->e, slot, frameId, result, exportLayersOf(layers));
     if (!status.ok())
         error = status.message;
     return status.ok();
 }
 
-bool VulkanExport::describe(Renderer& r, nlohmann::json& body, std::vector<int>& fds, std::string& error)
+bool VulkanExport::describe(Renderer& r, uint32_t layers, nlohmann::json& body, std::vector<int>& fds,
+                            std::string& error)
 {
-    return describeFrameExport(r, impl_->e, body, fds, error);
+    const uint32_t exported = exportLayersOf(layers);
+    SkyStatus status = ensureExportedLayers(r, impl_->e, exported);
+    if (!status.ok())
+    {
+        error = status.message;
+        return false;
+    }
+    return describeFrameExport(r, impl_->e, exported, body, fds, error);
+}
+
+uint32_t VulkanExport::layersMade() const
+{
+    uint32_t bits = 0;
+    for (const auto& [sky, exported] : kLayerMap)
+        if (!impl_->e.layers[exported].empty())
+            bits |= 1u << sky;
+    return bits;
 }
 
 void VulkanExport::destroy(Renderer& r)
@@ -67,16 +104,17 @@ bool VulkanExport::create(Renderer&, uint32_t, uint32_t, uint32_t, uint32_t, std
     error = "this build has no zero-copy export (skyservice/render/frame_export.h)";
     return false;
 }
-bool VulkanExport::exportFrame(Renderer&, uint32_t, uint64_t, const RenderResult&, std::string& error)
+bool VulkanExport::exportFrame(Renderer&, uint32_t, uint64_t, const RenderResult&, uint32_t, std::string& error)
 {
     error = "no zero-copy export";
     return false;
 }
-bool VulkanExport::describe(Renderer&, nlohmann::json&, std::vector<int>&, std::string& error)
+bool VulkanExport::describe(Renderer&, uint32_t, nlohmann::json&, std::vector<int>&, std::string& error)
 {
     error = "no zero-copy export";
     return false;
 }
+uint32_t VulkanExport::layersMade() const { return 0; }
 void VulkanExport::destroy(Renderer&) {}
 #endif
 

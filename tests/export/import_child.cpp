@@ -37,7 +37,7 @@ bool receiveLineWithFds(int socket, std::string& line, std::vector<int>& fds)
 {
     std::vector<char> buffer(65536);
     iovec iov = {buffer.data(), buffer.size()};
-    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int) * 16)];
+    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int) * 64)];
     msghdr msg = {};
     msg.msg_iov = &iov;
     msg.msg_iovlen = 1;
@@ -109,6 +109,7 @@ struct ChildVulkan
     VkDeviceMemory bufferMemory = VK_NULL_HANDLE;
     VkCommandPool pool = VK_NULL_HANDLE;
     SkyImportedFrames imported = {};
+    SkyImportedLayers importedLayers = {};
     uint32_t* messages = nullptr;  ///< outlives this: the destructor's messages count too
 
     ~ChildVulkan()
@@ -117,6 +118,7 @@ struct ChildVulkan
         {
             vkDeviceWaitIdle(device);
             sky_vulkan_destroy_frames(device, &imported);
+            sky_vulkan_destroy_layers(device, &importedLayers);
             vkDestroyCommandPool(device, pool, nullptr);
             vkDestroyBuffer(device, buffer, nullptr);
             vkFreeMemory(device, bufferMemory, nullptr);
@@ -140,32 +142,60 @@ struct ChildVulkan
         }                                                                                                              \
     } while (0)
 
-bool importAndRead(int socket, uint32_t slots, uint32_t width, uint32_t height, uint32_t shadowSize,
-                   uint64_t lastFrameId, ChildVulkan& vk, ChildReport& report, std::vector<uint8_t>& data)
+constexpr const char* kLayerNames[SKY_LAYER_COUNT] = {"display", "sky", "clouds", "depth"};
+
+// The description line and fds (PROTOCOL.md order: frames, shadows, layers, semaphore) as SkyExportedFrames.
+bool parseDescription(int socket, const ReadPlan& plan, SkyExportedFrames& frames, ChildReport& report)
 {
     std::string line;
     std::vector<int> fds;
     CHILD_TRY(receiveLineWithFds(socket, line, fds), "no description line with fds arrived");
     nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+    const uint32_t slots = plan.slots;
     CHILD_TRY(j.is_object() && j.contains("images") && j["images"].size() == slots, "bad description: %s",
               line.substr(0, 200).c_str());
     const nlohmann::json& images = j["images"];
     const bool shadows = !images[0]["shadow"].is_null();
     const bool semaphore = j.at("timeline_semaphore").get<bool>();
-    CHILD_TRY(fds.size() == slots * (shadows ? 2u : 1u) + (semaphore ? 1u : 0u), "%zu fds for %u slots", fds.size(),
-              slots);
-    SkyExportedFrames frames = {};
+    uint32_t layerCount = 0;
+    for (uint32_t k = SKY_LAYER_SKY; k < SKY_LAYER_COUNT; ++k)
+        layerCount += (plan.layers >> k) & 1u;
+    CHILD_TRY(fds.size() == slots * ((shadows ? 2u : 1u) + layerCount) + (semaphore ? 1u : 0u), "%zu fds for %u slots",
+              fds.size(), slots);
+    frames = SkyExportedFrames{};
     frames.slot_count = slots;
     frames.timeline_semaphore_fd = semaphore ? fds.back() : -1;
+    frames.layers = plan.layers | (1u << SKY_LAYER_DISPLAY);
+    size_t next = 0;
+    for (uint32_t i = 0; i < slots; ++i)
+        fillImage(images[i], fds[next++], frames.frame[i]);
     for (uint32_t i = 0; i < slots; ++i)
     {
-        fillImage(images[i], fds[i], frames.frame[i]);
         frames.shadow[i].memory_fd = -1;
         if (shadows)
-            fillImage(images[i]["shadow"], fds[slots + i], frames.shadow[i]);
+            fillImage(images[i]["shadow"], fds[next++], frames.shadow[i]);
     }
+    for (uint32_t k = 0; k < SKY_LAYER_COUNT; ++k)
+        for (uint32_t i = 0; i < slots; ++i)
+        {
+            frames.layer[k][i].memory_fd = -1;
+            if (k == SKY_LAYER_DISPLAY || !(plan.layers & (1u << k)))
+                continue;
+            const nlohmann::json& layers = images[i].value("layers", nlohmann::json::object());
+            CHILD_TRY(layers.contains(kLayerNames[k]), "slot %u has no %s layer", i, kLayerNames[k]);
+            fillImage(layers[kLayerNames[k]], fds[next++], frames.layer[k][i]);
+        }
     CHILD_TRY(parseHex(j.at("device_uuid"), frames.device_uuid) && parseHex(j.at("driver_uuid"), frames.driver_uuid),
               "bad uuids");
+    return true;
+}
+
+bool importInto(SkyExportedFrames& frames, const ReadPlan& plan, ChildVulkan& vk, ChildReport& report,
+                std::vector<uint8_t>& data)
+{
+    const uint32_t slots = plan.slots, width = plan.width, height = plan.height, shadowSize = plan.shadowSize;
+    const uint64_t lastFrameId = plan.lastFrameId;
+    const bool semaphore = frames.timeline_semaphore_fd >= 0;
 
     // A second instance and device, validation on.
     VkApplicationInfo app = {VK_STRUCTURE_TYPE_APPLICATION_INFO};
@@ -216,6 +246,8 @@ bool importAndRead(int socket, uint32_t slots, uint32_t width, uint32_t height, 
     vkGetDeviceQueue(vk.device, family, 0, &queue);
 
     CHILD_TRY(sky_vulkan_import_frames(pd, vk.device, &frames, &vk.imported) == SKY_OK, "%s", sky_vulkan_last_error());
+    CHILD_TRY(sky_vulkan_import_layers(pd, vk.device, &frames, &vk.importedLayers) == SKY_OK, "%s",
+              sky_vulkan_last_error());
 
     if (vk.imported.timeline_semaphore)  // the service signals the frame id when a slot holds that frame
     {
@@ -227,10 +259,8 @@ bool importAndRead(int socket, uint32_t slots, uint32_t width, uint32_t height, 
         vkGetSemaphoreCounterValue(vk.device, vk.imported.timeline_semaphore, &report.timelineValue);
     }
 
-    // One host buffer for every slot's frame and shadow map.
-    const VkDeviceSize frameBytes = VkDeviceSize(width) * height * 4;
-    const VkDeviceSize shadowBytes = VkDeviceSize(shadowSize) * shadowSize * 4;
-    const VkDeviceSize total = slots * (frameBytes + shadowBytes);
+    // One host buffer for every slot's frame, shadow map and layers.
+    const VkDeviceSize total = slots * slotBytes(plan);
     VkBufferCreateInfo bi = {VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     bi.size = total;
     bi.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
@@ -263,17 +293,27 @@ bool importAndRead(int socket, uint32_t slots, uint32_t width, uint32_t height, 
     VkDeviceSize offset = 0;
     for (uint32_t i = 0; i < slots; ++i)
     {
-        const SkyImportedImage* parts[2] = {&vk.imported.frame[i], &vk.imported.shadow[i]};
-        const uint32_t w[2] = {width, shadowSize}, h[2] = {height, shadowSize};
-        for (int k = 0; k < (shadowSize > 0 ? 2 : 1); ++k)
+        struct Part
         {
-            sky_vulkan_cmd_acquire(cmd, parts[k], family);
+            const SkyImportedImage* image;
+            uint32_t width, height, pixelBytes;
+        };
+        std::vector<Part> parts = {{&vk.imported.frame[i], width, height, 4}};
+        if (shadowSize > 0)
+            parts.push_back({&vk.imported.shadow[i], shadowSize, shadowSize, 4});
+        for (uint32_t k = SKY_LAYER_SKY; k < SKY_LAYER_COUNT; ++k)
+            if (plan.layers & (1u << k))
+                parts.push_back({&vk.importedLayers.image[k][i], width, height, 8});
+        for (const Part& part : parts)
+        {
+            CHILD_TRY(part.image->image != VK_NULL_HANDLE, "slot %u: an image was not imported", i);
+            sky_vulkan_cmd_acquire(cmd, part.image, family);
             VkBufferImageCopy region = {};
             region.bufferOffset = offset;
             region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-            region.imageExtent = {w[k], h[k], 1};
-            vkCmdCopyImageToBuffer(cmd, parts[k]->image, VK_IMAGE_LAYOUT_GENERAL, vk.buffer, 1, &region);
-            offset += VkDeviceSize(w[k]) * h[k] * 4;
+            region.imageExtent = {part.width, part.height, 1};
+            vkCmdCopyImageToBuffer(cmd, part.image->image, VK_IMAGE_LAYOUT_GENERAL, vk.buffer, 1, &region);
+            offset += VkDeviceSize(part.width) * part.height * part.pixelBytes;
         }
     }
     vkEndCommandBuffer(cmd);
@@ -291,19 +331,35 @@ bool importAndRead(int socket, uint32_t slots, uint32_t width, uint32_t height, 
 
 }  // namespace
 
-int runImportChild(int socket, uint32_t slots, uint32_t width, uint32_t height, uint32_t shadowSize,
-                   uint64_t lastFrameId)
+size_t slotBytes(const ReadPlan& plan)
 {
-    ChildReport report;
-    std::vector<uint8_t> data;
-    bool ok = false;
+    size_t bytes = size_t(plan.width) * plan.height * 4 + size_t(plan.shadowSize) * plan.shadowSize * 4;
+    for (uint32_t k = SKY_LAYER_SKY; k < SKY_LAYER_COUNT; ++k)
+        if (plan.layers & (1u << k))
+            bytes += size_t(plan.width) * plan.height * 8;
+    return bytes;
+}
+
+bool importAndRead(SkyExportedFrames& frames, const ReadPlan& plan, ChildReport& report, std::vector<uint8_t>& data)
+{
     uint32_t messages = 0;
+    bool ok = false;
     {
         ChildVulkan vk;
         vk.messages = &messages;
-        ok = importAndRead(socket, slots, width, height, shadowSize, lastFrameId, vk, report, data);
+        ok = importInto(frames, plan, vk, report, data);
     }  // ~ChildVulkan: its validation messages (leaks, bad frees) count too
     report.validationMessages = messages;
+    report.status = ok ? 0 : 1;
+    return ok;
+}
+
+int runImportChild(int socket, const ReadPlan& plan)
+{
+    ChildReport report;
+    std::vector<uint8_t> data;
+    SkyExportedFrames frames{};
+    bool ok = parseDescription(socket, plan, frames, report) && importAndRead(frames, plan, report, data);
     report.status = ok ? 0 : 1;
     if (write(socket, &report, sizeof report) != ssize_t(sizeof report))
         return 2;

@@ -219,6 +219,13 @@ TEST(Protocol, ValidRequestsParse)
     EXPECT_EQ(r.path, "/w/a.skywx");
     ASSERT_TRUE(parseRequest(R"({"type":"subscribe","transport":"vulkan"})", limits(), r, e));
     EXPECT_EQ(r.transport, Transport::Vulkan);
+    EXPECT_EQ(r.layers, 1u << SKY_LAYER_DISPLAY);
+    // Vulkan subscribers name layers as shm ones do (the service exports them as images).
+    ASSERT_TRUE(
+        parseRequest(R"({"type":"subscribe","transport":"vulkan","layers":["depth","clouds"]})", limits(), r, e));
+    EXPECT_EQ(r.layers, (1u << SKY_LAYER_DEPTH) | (1u << SKY_LAYER_CLOUDS));
+    EXPECT_FALSE(parseRequest(R"({"type":"subscribe","transport":"vulkan","layers":["fog"]})", limits(), r, e));
+    EXPECT_EQ(e.field, "layers");
     ASSERT_TRUE(parseRequest(R"({"type":"subscribe","transport":"files","dir":"/o","every":5,"format":"both"})",
                              limits(), r, e));
     EXPECT_EQ(r.transport, Transport::Files);

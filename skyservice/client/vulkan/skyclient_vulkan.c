@@ -249,6 +249,48 @@ void sky_vulkan_destroy_frames(VkDevice device, SkyImportedFrames* frames)
     memset(frames, 0, sizeof *frames);
 }
 
+SkyResult sky_vulkan_import_layers(VkPhysicalDevice physical_device, VkDevice device, SkyExportedFrames* frames,
+                                   SkyImportedLayers* out_layers)
+{
+    if (!physical_device || !device || !frames || !out_layers || frames->slot_count > SKY_MAX_EXPORTED_SLOTS)
+        return fail(SKY_ERR_ARGUMENT, "sky_vulkan_import_layers: null argument or bad slot count");
+    memset(out_layers, 0, sizeof *out_layers);
+    SkyResult result = SKY_OK;
+    for (uint32_t k = SKY_LAYER_SKY; k < SKY_LAYER_COUNT && result == SKY_OK; ++k)
+    {
+        if (!(frames->layers & (1u << k)))
+            continue;
+        for (uint32_t i = 0; i < frames->slot_count && result == SKY_OK; ++i)
+            if (frames->layer[k][i].memory_fd >= 0)
+                result = sky_vulkan_import_image(physical_device, device, &frames->layer[k][i],
+                                                 &out_layers->image[k][i]);
+        if (result == SKY_OK)
+            out_layers->layers |= 1u << k;
+    }
+    if (result != SKY_OK)
+    {
+        char saved[sizeof g_error];
+        memcpy(saved, g_error, sizeof saved);
+        sky_vulkan_destroy_layers(device, out_layers);
+        for (uint32_t k = 0; k < SKY_LAYER_COUNT; ++k)
+            for (uint32_t i = 0; i < SKY_MAX_EXPORTED_SLOTS; ++i)
+                close_fd(&frames->layer[k][i].memory_fd);
+        memcpy(g_error, saved, sizeof saved);
+        return result;
+    }
+    return ok();
+}
+
+void sky_vulkan_destroy_layers(VkDevice device, SkyImportedLayers* layers)
+{
+    if (!device || !layers)
+        return;
+    for (uint32_t k = 0; k < SKY_LAYER_COUNT; ++k)
+        for (uint32_t i = 0; i < SKY_MAX_EXPORTED_SLOTS; ++i)
+            sky_vulkan_destroy_image(device, &layers->image[k][i]);
+    memset(layers, 0, sizeof *layers);
+}
+
 void sky_vulkan_cmd_acquire(VkCommandBuffer cmd, const SkyImportedImage* image, uint32_t queue_family)
 {
     if (!cmd || !image || !image->image)

@@ -15,6 +15,8 @@
  *     VK_IMAGE_LAYOUT_GENERAL (copy, or sample through a view of your own);
  *     then sky_client_release_frame: SKY_ERR_TORN means the service rewrote the slot meanwhile.
  *   sky_vulkan_destroy_frames(device, &imported);
+ * With compositing layers (sky_client_subscribe_vulkan_layers): sky_vulkan_import_layers(pd, device, &frames,
+ * &layers) as well, read layers.image[SKY_LAYER_CLOUDS][slot] etc. like the frame, sky_vulkan_destroy_layers.
  *
  * The images have the exporter's exact creation parameters (required to import a dedicated opaque-fd
  * allocation): 2D, one mip, one layer, VK_IMAGE_TILING_OPTIMAL (or LINEAR when linear_tiling), usage
@@ -22,7 +24,9 @@
  * (the real size is in SkyFrame.width/height and shadow.size_texels). Frame images are
  * VK_FORMAT_R8G8B8A8_UNORM holding sRGB-encoded bytes (view them as R8G8B8A8_SRGB to sample linear
  * values: create the view with a format list of your own, or copy). Shadow images are R32_SFLOAT key-light
- * transmittance, north row first.
+ * transmittance, north row first. Layer images: SKY and CLOUDS VK_FORMAT_R16G16B16A16_SFLOAT (linear,
+ * pre-exposed; clouds premultiplied with alpha), DEPTH VK_FORMAT_R32G32_SFLOAT (metres: the cloud's front,
+ * then its weighted distance); skyservice/ipc/shm_layout.h SKY_LAYER_* says what each holds.
  *
  * Synchronisation: without a timeline semaphore (timeline_semaphore_fd == -1, e.g. lavapipe) the
  * service finished writing a slot before it published it in the ring; with one, it is signalled with the
@@ -62,6 +66,14 @@ typedef struct SkyImportedFrames
     VkSemaphore timeline_semaphore; /* VK_NULL_HANDLE when the service exports none */
 } SkyImportedFrames;
 
+/* The compositing layers, imported: image[SKY_LAYER_*][slot]. VK_NULL_HANDLE where not exported, and
+ * always in image[SKY_LAYER_DISPLAY] (the display layer is SkyImportedFrames.frame). */
+typedef struct SkyImportedLayers
+{
+    uint32_t layers; /* bit k = SKY_LAYER_k: the layers imported */
+    SkyImportedImage image[SKY_LAYER_COUNT][SKY_MAX_EXPORTED_SLOTS];
+} SkyImportedLayers;
+
 /* One line: why the last call of this thread failed ("" after success). */
 const char* sky_vulkan_last_error(void);
 
@@ -92,6 +104,13 @@ SkyResult sky_vulkan_import_semaphore(VkDevice device, int* fd, VkSemaphore* out
 SkyResult sky_vulkan_import_frames(VkPhysicalDevice physical_device, VkDevice device, SkyExportedFrames* frames,
                                    SkyImportedFrames* out_frames);
 void sky_vulkan_destroy_frames(VkDevice device, SkyImportedFrames* frames);
+
+/* Imports the compositing layers' images of `frames` (frames->layer, from sky_client_subscribe_vulkan_layers);
+ * sky_vulkan_import_frames imports the rest. On success their fds belong to the imported objects (set to
+ * -1); on failure whatever was imported is destroyed and the remaining layer fds are closed. */
+SkyResult sky_vulkan_import_layers(VkPhysicalDevice physical_device, VkDevice device, SkyExportedFrames* frames,
+                                   SkyImportedLayers* out_layers);
+void sky_vulkan_destroy_layers(VkDevice device, SkyImportedLayers* layers);
 
 /* Records the barrier that takes an imported image from the service (queue family
  * VK_QUEUE_FAMILY_EXTERNAL, layout GENERAL) for reading by transfer, compute and fragment stages on
