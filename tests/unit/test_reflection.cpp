@@ -27,7 +27,7 @@ TEST(Reflection, CloudMarchInterface)
     sky::ShaderInterface iface;
     std::string error;
     ASSERT_TRUE(sky::reflectSpirv(loadSpirv("cloud_march"), iface, error)) << error;
-    ASSERT_EQ(iface.bindings.size(), 14u);
+    ASSERT_EQ(iface.bindings.size(), 15u);
     EXPECT_EQ(iface.bindings[0], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
     EXPECT_EQ(iface.bindings[2], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     EXPECT_EQ(iface.bindings[8], VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
@@ -35,6 +35,7 @@ TEST(Reflection, CloudMarchInterface)
     EXPECT_EQ(iface.bindings[11], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);  // the column bounds
     EXPECT_EQ(iface.bindings[12], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);  // the light volume's far cascade
     EXPECT_EQ(iface.bindings[13], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);          // the row order (march_order.h)
+    EXPECT_EQ(iface.bindings[14], VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);           // the cloud's front distance
     EXPECT_EQ(iface.localSize[0], uint32_t(WORKGROUP_SIZE_2D));
     EXPECT_EQ(iface.pushConstantSize, 0u);
 }
