@@ -56,10 +56,13 @@ if(TARGET sky-service-bench)
              ${SKY_SERVICE_BENCH_BIN} --scene clear --size 160x90 --frames 3 --warmup 1 --transport shm
              --layers display,sky,clouds,depth)
     set_tests_properties(bench.service_layers PROPERTIES TIMEOUT 180)
-    # Layers travel in shared memory only; a malformed size is a usage error that names the argument.
-    # Neither starts a daemon. (Not labelled cpu: ./sky test's sanitizer build does not build the bench.)
-    add_test(NAME bench.service_layers_shm_only COMMAND ${SKY_BENCH_EXPECT} 2 "published in shared memory only"
-             ${SKY_SERVICE_BENCH_BIN} --scene clear --layers display,depth --transport both)
+    # The layers reach a Vulkan client too (exported images, each waited for and read).
+    add_test(NAME bench.service_layers_vulkan COMMAND ${SKY_BENCH_EXPECT} 0 "^clear +160x90 +vulkan "
+             ${SKY_SERVICE_BENCH_BIN} --scene clear --size 160x90 --frames 3 --warmup 1 --transport vulkan
+             --layers display,clouds,depth)
+    set_tests_properties(bench.service_layers_vulkan PROPERTIES TIMEOUT 180)
+    # A malformed size is a usage error that names the argument; no daemon starts.
+    # (Not labelled cpu: ./sky test's sanitizer build does not build the bench.)
     add_test(NAME bench.service_bad_size COMMAND ${SKY_BENCH_EXPECT} 2 "--size 1920by1080: expected WIDTHxHEIGHT"
              ${SKY_SERVICE_BENCH_BIN} --size 1920by1080)
     # A daemon that cannot start: the message shows the end of its log ("  | " lines), which names the device.

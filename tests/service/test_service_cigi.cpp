@@ -219,24 +219,33 @@ TEST(ServiceCigi, StratusDeckBelowFrom3000mAndOvercastFrom500m)
     EXPECT_GT(below.meanAlpha(0, h / 2 - 2), 0.9) << "the sky is not overcast from 500 m";
     EXPECT_LT(below.meanAlpha(h / 2 + 2, h), 0.1) << "cloud between the eye and the ground at 500 m";
 
-    // One Start of Frame per frame: the status's frame count, IG frame numbers 0, 1, 2, ...
-    const uint64_t frames = ig.status()["frames_rendered"].get<uint64_t>();
+    // One Start of Frame per frame: the status's frame count, IG frame numbers 0, 1, 2, ... The daemon may
+    // render another frame of its own (a fade step) while the test counts: count until the replies are
+    // quiet and the status's count equals them.
     uint32_t lastIgFrame = r->sof.igFrameNumber;
-    while (sofs + skipped < frames)
+    nlohmann::json status;
+    uint64_t frames = 0;
+    for (int round = 0; round < 20; ++round)
     {
-        std::optional<IgReply> more = host.receive(10000);
-        if (!more)
+        while (std::optional<IgReply> more = host.receive(300))
+        {
+            ++sofs;
+            EXPECT_EQ(more->sof.igFrameNumber, lastIgFrame + 1);
+            lastIgFrame = more->sof.igFrameNumber;
+            EXPECT_EQ(more->sof.lastHostFrameNumber, 2u);
+        }
+        status = ig.status();
+        frames = status["frames_rendered"].get<uint64_t>();
+        if (sofs + skipped >= frames)
             break;
-        ++sofs;
-        EXPECT_EQ(more->sof.igFrameNumber, lastIgFrame + 1);
-        lastIgFrame = more->sof.igFrameNumber;
-        EXPECT_EQ(more->sof.lastHostFrameNumber, 2u);
     }
-    EXPECT_EQ(sofs + skipped, frames);
+    EXPECT_EQ(sofs + skipped, frames) << "one Start of Frame per frame rendered";
     EXPECT_EQ(lastIgFrame + 1, frames);
-    EXPECT_FALSE(host.receive(300)) << "more Start of Frame datagrams than frames";
-    nlohmann::json cigi = ig.status()["cigi"];
-    EXPECT_EQ(cigi["start_of_frames_sent"].get<uint64_t>(), frames);
+    nlohmann::json cigi = status["cigi"];
+    // The counters are read while frames go on: one may be a frame ahead of the other.
+    const uint64_t sent = cigi["start_of_frames_sent"].get<uint64_t>();
+    EXPECT_LE(frames, sent + 1);
+    EXPECT_LE(sent, frames + 1) << "more Start of Frame datagrams than frames";
     EXPECT_EQ(cigi["errors_total"].get<uint64_t>(), 0u);
     EXPECT_EQ(ig.status()["weather"]["source"], "cigi");
     EXPECT_EQ(ig.daemon.stop(), 0);
