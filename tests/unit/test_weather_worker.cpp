@@ -61,10 +61,10 @@ TEST(WeatherWorker, RunsEveryJobOnItsOneThreadOneAtATime)
 
 TEST(WeatherWorker, AStagedWeatherGoesBeforeQueuedPrefetches)
 {
-    WeatherWorker w;
-    Gate gate;
+    Gate gate;  // what the jobs use is made before the worker, so it outlives them
     std::mutex orderMutex;
     std::string order;
+    WeatherWorker w;
     auto note = [&](char c) {
         std::lock_guard<std::mutex> lock(orderMutex);
         order += c;
@@ -102,8 +102,8 @@ TEST(WeatherWorker, TheDestructorRunsTheJobsStillQueued)
     std::atomic<int> ran{0};
     std::future<int> last;
     {
+        Gate gate;  // before the worker: it must outlive the jobs, which the worker's destructor runs
         WeatherWorker w;
-        Gate gate;
         std::future<int> blocker = w.submit<int>(WeatherJobPriority::Prefetch, [&] {
             gate.opened.wait();
             return ++ran;
