@@ -7,6 +7,7 @@
 
 #include <GeographicLib/Geodesic.hpp>
 #include <chrono>
+#include <thread>
 
 namespace sky
 {
@@ -170,10 +171,20 @@ bool markDaemon(const ServiceRunSettings& s, SkyClient* client, DaemonMark& mark
 bool finishDaemon(const ServiceRunSettings& s, SkyClient* client, const DaemonMark& start, ServiceRunResult& out,
                   std::string& error)
 {
+    // The daemon publishes a frame before it counts it in its status, so the frame last taken may not be counted
+    // yet when the client asks: read again (briefly) until every frame the client took is there.
+    constexpr auto kCountSettlesWithin = std::chrono::seconds(2);
+    const Clock::time_point giveUp = Clock::now() + kCountSettlesWithin;
     DaemonMark end;
     nlohmann::json status;
-    if (!markDaemon(s, client, end, status, error))
-        return false;
+    do
+    {
+        if (!markDaemon(s, client, end, status, error))
+            return false;
+        if (end.framesRendered - start.framesRendered >= out.frames)
+            break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    } while (Clock::now() < giveUp);
     out.daemonFrames = end.framesRendered - start.framesRendered;
     out.daemonFrameMs = status.contains("frame_ms") ? status["frame_ms"] : nlohmann::json(nullptr);
     if (start.cpuS >= 0 && end.cpuS >= 0)
