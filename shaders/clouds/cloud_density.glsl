@@ -60,24 +60,40 @@ WeatherLookup weatherLookup(vec2 mapPosM)
 
 // The large-scale lookup: the base noise read at BASE_NOISE_LARGE_SCALE times its period (192 km by
 // default, wider than the 150 km shadow map; frame_setup.cpp keeps it a divisor of the offset modulus).
-// It gives BASE_SHAPE_LARGE_WEIGHT of the low-frequency FBM (so cloud fraction and cell size vary over
-// tens of kilometres) and a smooth 3D warp of the regular lookup, so that the 8 km tile never lines up
-// with itself: near 44 N 8.5 E the lattice vector (-8, 0, 8) km lies in the horizontal plane, and without
-// the warp the shadow map correlated 0.82 with itself 11 km north (tests/gpu/test_cloud_shapes.cpp).
+// It gives BASE_SHAPE_LARGE_WEIGHT of the low-frequency FBM, so cloud fraction and cell size vary over
+// tens of kilometres.
 const float BASE_NOISE_LARGE_SCALE = 24.0f;
-// Warp amplitude in base-noise periods, times the spread of the Worley FBM channels (about +-0.15 around
-// 0.5): cells move by a kilometre or two relative to cells 10 km away (autocorrelation peak 0.46 at 0.3,
-// under 0.1 at 1); more stretches the cells visibly.
-const float BASE_NOISE_WARP = 1.0f;
+
+// A smooth warp of the regular lookup (m), so that the 8 km tile never lines up with itself: near 44 N
+// 8.5 E the lattice vector (-8, 0, 8) km lies in the horizontal plane, and without a warp the shadow map
+// correlated 0.82 with itself 11 km north (tests/gpu/test_cloud_shapes.cpp). Sums of sines whose wave
+// vectors are whole cycles per offset modulus along each noise-frame axis (wavelengths 16-24 km), so
+// the warp repeats with the offsets and nothing jumps when they wrap; cells move by up to 1 km along
+// each axis, by about as much relative to cells 10 km away (shadow-map autocorrelation beyond 5 km 0.18; 0.58
+// with wavelengths of 50-66 km and 400 m). Computed, not read from the large-scale lookup as it was
+// first: lavapipe filters an 8-bit texture to 8 bits, so the warp jumped by 1/255 of its range (31 m)
+// along surfaces ~100 m apart and broke sharp cloud edges into steps that resampling cannot follow
+// (tests/gpu/test_channels.cpp AChannelsEdgeMatchesACentredViewAtTheSameRays: 0.0041 of the peak at
+// the same rays, 0.0026 computed, 0.0023 without any warp).
+const float BASE_NOISE_WARP_M = 500.0f;
+
+vec3 largeScaleWarp(vec3 p)
+{
+    float cyclesPerM = 6.2831853f / (float(NOISE_OFFSET_MODULUS_HIGH_PERIODS) * frame.noiseScale.w);
+    vec3 a = vec3(dot(p, vec3(13.0f, 9.0f, 0.0f)), dot(p, vec3(0.0f, 11.0f, 17.0f)), dot(p, vec3(19.0f, 0.0f, 8.0f)));
+    vec3 b = vec3(dot(p, vec3(0.0f, 17.0f, 12.0f)), dot(p, vec3(14.0f, 0.0f, 19.0f)), dot(p, vec3(9.0f, 15.0f, 11.0f)));
+    return BASE_NOISE_WARP_M *
+           (sin(a * cyclesPerM + vec3(0.3f, 2.1f, 4.4f)) + sin(b * cyclesPerM + vec3(1.7f, 5.2f, 3.0f)));
+}
 
 // Base shape from the Perlin-Worley noise (Schneider: remap(R, lowFreqFBM - 1, 1, 0, 1)) at `noisePos`,
-// warped by the large-scale lookup at `largePos` (the unslid position: the warp is the same up a column).
+// warped by largeScaleWarp at `largePos` (the unslid position: the warp is the same up a column), which is
+// also where the large-scale lookup reads.
 float baseShapeAt(vec3 noisePos, vec3 largePos)
 {
     vec3 largeUvw = largePos / (BASE_NOISE_LARGE_SCALE * frame.noiseScale.x) + vec3(0.21f, 0.53f, 0.87f);
     vec4 m = textureLod(baseNoise, largeUvw, 0.0f);
-    vec3 warp = (m.yzw - vec3(0.5f)) * (BASE_NOISE_WARP * frame.noiseScale.x);
-    vec4 n = textureLod(baseNoise, (noisePos + warp) / frame.noiseScale.x, 0.0f);
+    vec4 n = textureLod(baseNoise, (noisePos + largeScaleWarp(largePos)) / frame.noiseScale.x, 0.0f);
     vec3 fbmWeights = vec3(0.625f, 0.25f, 0.125f);
     float lowFreqFbm = mix(dot(n.yzw, fbmWeights), dot(m.yzw, fbmWeights), BASE_SHAPE_LARGE_WEIGHT);
     return equalizeBaseShape(remapValue(n.x, lowFreqFbm - 1.0f, 1.0f, 0.0f, 1.0f));

@@ -87,6 +87,9 @@ struct FrameParams
 };
 
 // frame flags
+// The noise offsets (layerNoiseOffsetM) wrap at this many high-cloud periods (noiseScale.w: 384 km by
+// default; skyservice/render/frame_setup.cpp): whatever the cloud shaders make periodic repeats with it.
+#define NOISE_OFFSET_MODULUS_HIGH_PERIODS 16
 #define FRAME_FLAG_NO_DETAIL 1u      // skip detail erosion (tests of the base shape)
 #define FRAME_FLAG_NO_HIGH_CLOUD 2u  // skip the 2D cirrus layer
 #define FRAME_FLAG_NO_LINEAR_OUTPUT 4u  // the composite writes no linear frame (none was asked for: 1x1 stand-in bound)

@@ -33,7 +33,7 @@ bool divides(double period, double modulus)
 // 16 high-cloud periods (384 km by default): the large-scale lookups (24 base periods in
 // cloud_density.glsl, 8 high periods in high_cloud_alpha.glsl) are wider than the 150 km shadow map and
 // must still divide it; float offsets of a few hundred kilometres keep ~0.03 m resolution.
-double noiseOffsetModulusM(const QualitySettings& q) { return 16.0 * q.highNoisePeriodM; }
+double noiseOffsetModulusM(const QualitySettings& q) { return NOISE_OFFSET_MODULUS_HIGH_PERIODS * q.highNoisePeriodM; }
 
 bool validateNoisePeriods(const QualitySettings& q, std::string& error)
 {
