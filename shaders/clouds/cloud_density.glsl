@@ -58,12 +58,6 @@ WeatherLookup weatherLookup(vec2 mapPosM)
     return w;
 }
 
-// The large-scale lookup: the base noise read at BASE_NOISE_LARGE_SCALE times its period (192 km by
-// default, wider than the 150 km shadow map; frame_setup.cpp keeps it a divisor of the offset modulus).
-// It gives BASE_SHAPE_LARGE_WEIGHT of the low-frequency FBM, so cloud fraction and cell size vary over
-// tens of kilometres.
-const float BASE_NOISE_LARGE_SCALE = 24.0f;
-
 // A smooth warp of the regular lookup (m), so that the 8 km tile never lines up with itself: near 44 N
 // 8.5 E the lattice vector (-8, 0, 8) km lies in the horizontal plane, and without a warp the shadow map
 // correlated 0.82 with itself 11 km north (tests/gpu/test_cloud_shapes.cpp). Sums of sines whose wave
@@ -74,28 +68,27 @@ const float BASE_NOISE_LARGE_SCALE = 24.0f;
 // first: lavapipe filters an 8-bit texture to 8 bits, so the warp jumped by 1/255 of its range (31 m)
 // along surfaces ~100 m apart and broke sharp cloud edges into steps that resampling cannot follow
 // (tests/gpu/test_channels.cpp AChannelsEdgeMatchesACentredViewAtTheSameRays: 0.0041 of the peak at
-// the same rays, 0.0026 computed, 0.0023 without any warp).
+// the same rays, 0.0025 computed, 0.0023 without any warp).
 const float BASE_NOISE_WARP_M = 500.0f;
 
-vec3 largeScaleWarp(vec3 p)
+vec3 largeScaleWarp(vec3 p, float radPerM)
 {
-    float cyclesPerM = 6.2831853f / (float(NOISE_OFFSET_MODULUS_HIGH_PERIODS) * frame.noiseScale.w);
     vec3 a = vec3(dot(p, vec3(13.0f, 9.0f, 0.0f)), dot(p, vec3(0.0f, 11.0f, 17.0f)), dot(p, vec3(19.0f, 0.0f, 8.0f)));
     vec3 b = vec3(dot(p, vec3(0.0f, 17.0f, 12.0f)), dot(p, vec3(14.0f, 0.0f, 19.0f)), dot(p, vec3(9.0f, 15.0f, 11.0f)));
     return BASE_NOISE_WARP_M *
-           (sin(a * cyclesPerM + vec3(0.3f, 2.1f, 4.4f)) + sin(b * cyclesPerM + vec3(1.7f, 5.2f, 3.0f)));
+           (sin(a * radPerM + vec3(1.9f, 3.7f, 6.0f)) + sin(b * radPerM + vec3(3.3f, 0.5f, 4.6f)));
 }
 
 // Base shape from the Perlin-Worley noise (Schneider: remap(R, lowFreqFBM - 1, 1, 0, 1)) at `noisePos`,
-// warped by largeScaleWarp at `largePos` (the unslid position: the warp is the same up a column), which is
-// also where the large-scale lookup reads.
+// warped by largeScaleWarp at `largePos` (the unslid position: the warp is the same up a column), where
+// largeScaleFbm (cloud_shape.glsl) gives BASE_SHAPE_LARGE_WEIGHT of the FBM, so cloud fraction and cell
+// size vary over tens of kilometres.
 float baseShapeAt(vec3 noisePos, vec3 largePos)
 {
-    vec3 largeUvw = largePos / (BASE_NOISE_LARGE_SCALE * frame.noiseScale.x) + vec3(0.21f, 0.53f, 0.87f);
-    vec4 m = textureLod(baseNoise, largeUvw, 0.0f);
-    vec4 n = textureLod(baseNoise, (noisePos + largeScaleWarp(largePos)) / frame.noiseScale.x, 0.0f);
-    vec3 fbmWeights = vec3(0.625f, 0.25f, 0.125f);
-    float lowFreqFbm = mix(dot(n.yzw, fbmWeights), dot(m.yzw, fbmWeights), BASE_SHAPE_LARGE_WEIGHT);
+    float radPerM = 6.2831853f / (float(NOISE_OFFSET_MODULUS_HIGH_PERIODS) * frame.noiseScale.w);
+    vec4 n = textureLod(baseNoise, (noisePos + largeScaleWarp(largePos, radPerM)) / frame.noiseScale.x, 0.0f);
+    float lowFreqFbm = mix(dot(n.yzw, vec3(0.625f, 0.25f, 0.125f)), largeScaleFbm(largePos, radPerM),
+                           BASE_SHAPE_LARGE_WEIGHT);
     return equalizeBaseShape(remapValue(n.x, lowFreqFbm - 1.0f, 1.0f, 0.0f, 1.0f));
 }
 

@@ -94,19 +94,34 @@ float anvilDensity(float h)
     return bottom * top;
 }
 
-// Share of the low-frequency FBM that comes from the large-scale lookup (cloud_density.glsl), the rest
-// from the texel of R itself. It shifts the local cloud fraction over tens of kilometres: a share of 0.5
+// Share of the low-frequency FBM that comes from the large-scale field (largeScaleFbm), the rest from
+// the texel of R itself. It shifts the local cloud fraction over tens of kilometres: a share of 0.5
 // turned whole 20 km regions clear or overcast at a coverage of 0.4; 0.2 keeps the data's coverage
 // meaningful over a few kilometres while cells still cluster.
 SKY_CONST float BASE_SHAPE_LARGE_WEIGHT = 0.2f;
+// Amplitude of each of the three sines of largeScaleFbm: its spread (0.1) is about that of the noise's
+// low-frequency FBM.
+SKY_CONST float LARGE_FBM_AMPLITUDE = 0.08f;
+
+// The large-scale field at noise-frame position p (m): three sines of 50-66 km wavelength around 0.5,
+// their wave vectors whole cycles per offset modulus along each axis (`radPerM` = 2 pi / the modulus),
+// so the field repeats with the offsets. Computed rather than read from a 192 km lookup of the noise as
+// it was first: lavapipe filters the 8-bit noise to 8 bits, and a lookup that coarse came back in steps
+// that cut cloud edges (tests/gpu/test_channels.cpp AChannelsEdgeMatchesACentredViewAtTheSameRays).
+float largeScaleFbm(vec3 p, float radPerM)
+{
+    vec3 c = vec3(dot(p, vec3(5.0f, 3.0f, 0.0f)), dot(p, vec3(0.0f, 4.0f, 6.0f)), dot(p, vec3(7.0f, 0.0f, 3.0f)));
+    vec3 s = sin(c * radPerM + vec3(4.2f, 1.3f, 0.4f));
+    return 0.5f + LARGE_FBM_AMPLITUDE * (s.x + s.y + s.z);
+}
 
 // The base shape remap(R, lowFreqFbm - 1, 1, 0, 1) of our 128^3 noise (lowFreqFbm from the same texel
-// and, BASE_SHAPE_LARGE_WEIGHT of it, from an independent one) is close to normal with this mean and spread
+// and, BASE_SHAPE_LARGE_WEIGHT of it, from largeScaleFbm) is close to normal with this mean and spread
 // (measured over the texture; tests/unit/test_cloud_math.cpp keeps them true). Mapping
 // it through the normal CDF (logistic approximation, Bowling et al. 2009: 1.702) makes it uniform in
 // [0,1], so that a coverage c leaves a cloud fraction of about c where the height profile is 1.
-SKY_CONST float BASE_SHAPE_MEAN = 0.8293f;
-SKY_CONST float BASE_SHAPE_SD = 0.0457f;
+SKY_CONST float BASE_SHAPE_MEAN = 0.8299f;
+SKY_CONST float BASE_SHAPE_SD = 0.0437f;
 
 float equalizeBaseShape(float shape)
 {

@@ -39,8 +39,7 @@ bool validateNoisePeriods(const QualitySettings& q, std::string& error)
 {
     double m = noiseOffsetModulusM(q);
     // The high-cloud shader also uses 1/8, 1/2 and 8x its period.
-    // The base noise is also read at 24x its period (cloud_density.glsl).
-    for (double p : {q.baseNoisePeriodM, 24.0 * q.baseNoisePeriodM, q.detailNoisePeriodM, q.curlNoisePeriodM,
+    for (double p : {q.baseNoisePeriodM, q.detailNoisePeriodM, q.curlNoisePeriodM,
                      q.highNoisePeriodM / 8.0})
         if (!divides(p, m))
         {
