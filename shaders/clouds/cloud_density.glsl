@@ -92,7 +92,9 @@ float baseShapeAt(vec3 noisePos, vec3 largePos)
     return equalizeBaseShape(remapValue(n.x, lowFreqFbm - 1.0f, 1.0f, 0.0f, 1.0f));
 }
 
-float erodeAt(float density, vec3 noisePos, float hf, float distanceM)
+// Detail erosion of `density` at `noisePos`, and the torn base of a genus with `raggedness` (cloud_shape.glsl
+// baseRaggedness; the detail noise tears it, so it fades with the detail).
+float erodeAt(float density, vec3 noisePos, float hf, float distanceM, float raggedness)
 {
     // Detail erosion fades out with distance (frame.marchLod.xy): far away its noise is finer than a pixel.
     float fade = 1.0f - smoothstep(frame.marchLod.x, frame.marchLod.y, distanceM);
@@ -103,7 +105,8 @@ float erodeAt(float density, vec3 noisePos, float hf, float distanceM)
     vec3 q = noisePos + vec3(curl, -curl.x) * (1.0f - hf) * 0.12f * frame.noiseScale.y;
     vec4 dn = textureLod(detailNoise, q / frame.noiseScale.y, 0.0f);
     float detailFbm = dn.x * 0.625f + dn.y * 0.25f + dn.z * 0.125f;
-    return erodeWithDetail(density, detailFbm, hf, frame.cloudLook.y * fade);
+    float eroded = erodeWithDetail(density, detailFbm, hf, frame.cloudLook.y * fade);
+    return eroded * raggedBaseFactor(hf, raggedness * fade, 1.0f - detailFbm);
 }
 
 struct DensitySample
@@ -179,7 +182,7 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         if (d <= 0.0f)
             continue;
         if (!cheap)
-            d = erodeAt(d, noisePos, hf, distanceM);
+            d = erodeAt(d, noisePos, hf, distanceM, anvilSlab ? 0.0f : baseRaggedness(cloudType));
         d *= densityScale;
         s.density += d;
         if (d > best)

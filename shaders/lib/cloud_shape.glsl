@@ -150,6 +150,32 @@ float erodeWithDetail(float shape, float detailFbm, float h, float strength)
     return saturate1(remapValue(shape, detail * strength, 1.0f, 0.0f, 1.0f));
 }
 
+// How far up its layer (height fraction) the base of a genus is torn: stratus and nimbostratus hang
+// ragged fragments (fractus, pannus) instead of a flat underside; 0 keeps the base flat.
+float baseRaggedness(int cloudType)
+{
+    if (cloudType == CLOUD_TYPE_STRATUS)
+        return 0.25f;
+    if (cloudType == CLOUD_TYPE_NIMBOSTRATUS)
+        return 0.2f;
+    return 0.0f;
+}
+
+// Share of the layer over which a torn base fades in above its local height.
+SKY_CONST float RAGGED_BASE_SOFTNESS = 0.05f;
+
+// Factor on the density at height fraction h of a base torn up to `raggedness` of the layer: the local
+// base lies at raggedness * tear (tear in [0,1], from the detail noise), so the underside is an uneven
+// surface with fragments hanging below the rest; 1 above raggedness + the softness. It only removes
+// cloud: nothing appears below the layer's base.
+float raggedBaseFactor(float h, float raggedness, float tear)
+{
+    if (raggedness <= 0.0f)
+        return 1.0f;
+    float localBase = raggedness * saturate1(tear);
+    return smoothstep(localBase, localBase + RAGGED_BASE_SOFTNESS, h);
+}
+
 // Rain makes bases dark: precipitation adds absorption near the base (docs/model.md). The extinction is
 // the scattering coefficient times (1 + this factor), so the single-scattering albedo is 1 / (1 + it).
 float rainAbsorptionFactor(float rainMmH, float heightFraction)

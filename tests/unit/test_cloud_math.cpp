@@ -202,8 +202,8 @@ TEST(CloudMath, BaseShapeStatisticsMatchTheEqualisationConstants)
         glm::vec4 a = glsl::baseNoiseTexel(glm::uvec3(texel(rng), texel(rng), texel(rng)), BASE_NOISE_SIZE, 1u);
         a = glm::round(a * 255.0f) / 255.0f;
         const glm::vec3 place(modulusM * unit(rng), modulusM * unit(rng), modulusM * unit(rng));
-        float low = glm::mix(a.y * 0.625f + a.z * 0.25f + a.w * 0.125f,
-                             glsl::largeScaleFbm(place, float(2.0 * M_PI / double(modulusM))), glsl::BASE_SHAPE_LARGE_WEIGHT);
+        const float large = glsl::largeScaleFbm(place, float(2.0 * M_PI / double(modulusM)));
+        float low = glm::mix(a.y * 0.625f + a.z * 0.25f + a.w * 0.125f, large, glsl::BASE_SHAPE_LARGE_WEIGHT);
         float shape = glsl::remapValue(a.x, low - 1.0f, 1.0f, 0.0f, 1.0f);
         sum += double(shape);
         sumSq += double(shape) * double(shape);
@@ -322,4 +322,34 @@ TEST(CloudMath, CumulusNarrowsWithHeightAndTheAnvilThinsTowardItsEdge)
     EXPECT_EQ(glsl::anvilSlabProfile(0.4f, 0.3f), 0.0f);
     EXPECT_GT(glsl::anvilSlabProfile(0.85f, 0.3f), 0.2f);
     EXPECT_EQ(glsl::anvilSlabProfile(1.0f, 1.0f), 0.0f);  // flat top
+}
+
+// Ragged bases (issue 22): stratus and nimbostratus bases are torn up to a share of the layer, other
+// genera keep a flat base; the factor only removes cloud (never above 1, 0 below the local base), is 1
+// above the torn part, and where the tear is 0 the base stays where it was.
+TEST(CloudMath, StratusAndNimbostratusBasesAreRagged)
+{
+    EXPECT_GT(glsl::baseRaggedness(CLOUD_TYPE_STRATUS), 0.0f);
+    EXPECT_GT(glsl::baseRaggedness(CLOUD_TYPE_NIMBOSTRATUS), 0.0f);
+    EXPECT_EQ(glsl::baseRaggedness(CLOUD_TYPE_CUMULUS), 0.0f);
+    EXPECT_EQ(glsl::baseRaggedness(CLOUD_TYPE_STRATOCUMULUS), 0.0f);
+    const float r = glsl::baseRaggedness(CLOUD_TYPE_STRATUS);
+    for (float tear = 0.0f; tear <= 1.0f; tear += 0.25f)
+        for (float h = 0.0f; h <= 1.0f; h += 0.05f)
+        {
+            const float f = glsl::raggedBaseFactor(h, r, tear);
+            EXPECT_GE(f, 0.0f);
+            EXPECT_LE(f, 1.0f);
+            if (h < r * tear)
+            {
+                EXPECT_EQ(f, 0.0f) << h << " " << tear;
+            }
+            if (h >= r + glsl::RAGGED_BASE_SOFTNESS)
+            {
+                EXPECT_EQ(f, 1.0f) << h << " " << tear;
+            }
+        }
+    EXPECT_EQ(glsl::raggedBaseFactor(0.1f, r, 1.0f), 0.0f) << "a full tear lifts the base";
+    EXPECT_GT(glsl::raggedBaseFactor(0.1f, r, 0.0f), 0.9f) << "no tear keeps it";
+    EXPECT_EQ(glsl::raggedBaseFactor(0.0f, 0.0f, 1.0f), 1.0f) << "flat bases are untouched";
 }
