@@ -2,8 +2,6 @@
 // Cloud density at a point: weather window lookup, base shape, coverage, anvils, detail erosion.
 // Included by cloud passes after the FrameBlock and the texture bindings.
 
-// Vertical stretch of the base noise: 1 = isotropic, 0.35 = features ~3 times taller than wide.
-const float BASE_NOISE_VERTICAL_SCALE = 0.35f;
 // Extinction relative to cloudLook.x per genus: stratiform decks are optically thinner per metre.
 float genusDensityScale(int cloudType)
 {
@@ -60,18 +58,43 @@ WeatherLookup weatherLookup(vec2 mapPosM)
     return w;
 }
 
-// Base shape from the Perlin-Worley noise (Schneider: remap(R, lowFreqFBM - 1, 1, 0, 1)).
-float baseShapeAt(vec3 noisePos)
+// A smooth warp of the regular lookup (m), so that the 8 km tile never lines up with itself: near 44 N
+// 8.5 E the lattice vector (-8, 0, 8) km lies in the horizontal plane, and without a warp the shadow map
+// correlated 0.82 with itself 11 km north (tests/gpu/test_cloud_shapes.cpp). Sums of sines whose wave
+// vectors are whole cycles per offset modulus along each noise-frame axis (wavelengths 16-24 km), so
+// the warp repeats with the offsets and nothing jumps when they wrap; cells move by up to 1 km along
+// each axis, by about as much relative to cells 10 km away (shadow-map autocorrelation beyond 5 km 0.18; 0.58
+// with wavelengths of 50-66 km and 400 m). Computed, not read from the large-scale lookup as it was
+// first: lavapipe filters an 8-bit texture to 8 bits, so the warp jumped by 1/255 of its range (31 m)
+// along surfaces ~100 m apart and broke sharp cloud edges into steps that resampling cannot follow
+// (tests/gpu/test_channels.cpp AChannelsEdgeMatchesACentredViewAtTheSameRays: 0.0041 of the peak at
+// the same rays, 0.0025 computed, 0.0023 without any warp).
+const float BASE_NOISE_WARP_M = 500.0f;
+
+vec3 largeScaleWarp(vec3 p, float radPerM)
 {
-    vec4 n = textureLod(baseNoise, noisePos / frame.noiseScale.x, 0.0f);
-    // Half of the low-frequency FBM comes from a second lookup at 3x the period, so that the 128^3 tile
-    // does not visibly repeat every period across a wide view or the shadow map (it repeats every 3).
-    vec4 m = textureLod(baseNoise, noisePos / (3.0f * frame.noiseScale.x) + vec3(0.37f, 0.11f, 0.73f), 0.0f);
-    float lowFreqFbm = 0.5f * (n.y * 0.625f + n.z * 0.25f + n.w * 0.125f) + 0.5f * (m.y * 0.625f + m.z * 0.25f + m.w * 0.125f);
+    vec3 a = vec3(dot(p, vec3(13.0f, 9.0f, 0.0f)), dot(p, vec3(0.0f, 11.0f, 17.0f)), dot(p, vec3(19.0f, 0.0f, 8.0f)));
+    vec3 b = vec3(dot(p, vec3(0.0f, 17.0f, 12.0f)), dot(p, vec3(14.0f, 0.0f, 19.0f)), dot(p, vec3(9.0f, 15.0f, 11.0f)));
+    return BASE_NOISE_WARP_M *
+           (sin(a * radPerM + vec3(1.9f, 3.7f, 6.0f)) + sin(b * radPerM + vec3(3.3f, 0.5f, 4.6f)));
+}
+
+// Base shape from the Perlin-Worley noise (Schneider: remap(R, lowFreqFBM - 1, 1, 0, 1)) at `noisePos`,
+// warped by largeScaleWarp at `largePos` (the unslid position: the warp is the same up a column), where
+// largeScaleFbm (cloud_shape.glsl) gives BASE_SHAPE_LARGE_WEIGHT of the FBM, so cloud fraction and cell
+// size vary over tens of kilometres.
+float baseShapeAt(vec3 noisePos, vec3 largePos)
+{
+    float radPerM = 6.2831853f / (float(NOISE_OFFSET_MODULUS_HIGH_PERIODS) * frame.noiseScale.w);
+    vec4 n = textureLod(baseNoise, (noisePos + largeScaleWarp(largePos, radPerM)) / frame.noiseScale.x, 0.0f);
+    float lowFreqFbm = mix(dot(n.yzw, vec3(0.625f, 0.25f, 0.125f)), largeScaleFbm(largePos, radPerM),
+                           BASE_SHAPE_LARGE_WEIGHT);
     return equalizeBaseShape(remapValue(n.x, lowFreqFbm - 1.0f, 1.0f, 0.0f, 1.0f));
 }
 
-float erodeAt(float density, vec3 noisePos, float hf, float distanceM)
+// Detail erosion of `density` at `noisePos`, and the torn base of a genus with `raggedness` (cloud_shape.glsl
+// baseRaggedness; the detail noise tears it, so it fades with the detail).
+float erodeAt(float density, vec3 noisePos, float hf, float distanceM, float raggedness)
 {
     // Detail erosion fades out with distance (frame.marchLod.xy): far away its noise is finer than a pixel.
     float fade = 1.0f - smoothstep(frame.marchLod.x, frame.marchLod.y, distanceM);
@@ -82,7 +105,8 @@ float erodeAt(float density, vec3 noisePos, float hf, float distanceM)
     vec3 q = noisePos + vec3(curl, -curl.x) * (1.0f - hf) * 0.12f * frame.noiseScale.y;
     vec4 dn = textureLod(detailNoise, q / frame.noiseScale.y, 0.0f);
     float detailFbm = dn.x * 0.625f + dn.y * 0.25f + dn.z * 0.125f;
-    return erodeWithDetail(density, detailFbm, hf, frame.cloudLook.y * fade);
+    float eroded = erodeWithDetail(density, detailFbm, hf, frame.cloudLook.y * fade);
+    return eroded * raggedBaseFactor(hf, raggedness * fade, 1.0f - detailFbm);
 }
 
 struct DensitySample
@@ -128,30 +152,28 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         vec3 shear = vec3(frame.layerShearM[k].xy * hf, 0.0f);
         vec3 noisePos = toNoiseFrame(-shear) + noiseRel + frame.layerNoiseOffsetM[k].xyz;
         // The base shape varies slowly with height: its lookup point slides down the local vertical
-        // toward the layer base by (1 - s) of the height, so that clouds are vertically coherent columns
-        // (coverage c shades about c of the ground) while the detail noise keeps full 3D variation.
-        // Written as a shift of p, so nothing cancels in float and the point stays world-fixed.
-        vec3 baseNoisePos = noisePos - toNoiseFrame(radial) * ((h - base) * (1.0f - BASE_NOISE_VERTICAL_SCALE));
-        float shape = baseShapeAt(baseNoisePos);
+        // toward the layer base by (1 - s) of the height (s per genus, baseNoiseVerticalScale), so that
+        // clouds are vertically coherent while the detail noise keeps full 3D variation. Written as a
+        // shift of p, so nothing cancels in float and the point stays world-fixed.
+        float verticalScale = baseNoiseVerticalScale(anvilSlab ? CLOUD_TYPE_CIRROSTRATUS : cloudType);
+        vec3 baseNoisePos = noisePos - toNoiseFrame(radial) * ((h - base) * (1.0f - verticalScale));
+        float shape = baseShapeAt(baseNoisePos, noisePos);
         float densityScale = genusDensityScale(cloudType);
         if (anvilSlab)
         {
-            // The anvil: a flat slab spreading downwind of the tower top, thinning at its edges.
-            shape *= smoothstep(0.0f, 0.3f, hf) * (1.0f - smoothstep(0.6f, 1.0f, hf));
+            // The anvil: a lens under the tropopause, flat on top, its underside rising toward the edge so
+            // it thins out there instead of ending in a wall (coverage falls off away from the tower).
+            shape *= anvilSlabProfile(hf, coverage);
+            // A sheet, not a field of puffs: the noise only breaks it up where it thins toward the edge.
+            coverage = saturate1(coverage * 1.8f);
             densityScale *= 0.8f;
         }
         else
         {
             shape *= cloudHeightProfile(cloudType, hf);
-            // Cumulus domes: the cloud narrows toward its top (the coverage threshold rises with height),
-            // so a vertically coherent column ends in a rounded top rather than a flat plateau.
-            if (cloudType == CLOUD_TYPE_CUMULUS)
-                coverage *= 1.0f - 0.6f * smoothstep(0.15f, 1.0f, hf);
+            coverage *= coverageHeightFactor(cloudType, hf);
             if (cloudType == CLOUD_TYPE_CUMULONIMBUS)
             {
-                // The tower narrows with height (towers are 5-10 km wide at mid level, the cell wider at
-                // the base); the anvil term then spreads the top again.
-                coverage *= 1.0f - 0.35f * smoothstep(0.3f, 0.75f, hf);
                 shape = anvilShape(shape, hf, range.z);
                 densityScale *= anvilDensity(hf) * 1.5f;
             }
@@ -160,7 +182,7 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         if (d <= 0.0f)
             continue;
         if (!cheap)
-            d = erodeAt(d, noisePos, hf, distanceM);
+            d = erodeAt(d, noisePos, hf, distanceM, anvilSlab ? 0.0f : baseRaggedness(cloudType));
         d *= densityScale;
         s.density += d;
         if (d > best)

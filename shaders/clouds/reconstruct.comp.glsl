@@ -3,8 +3,9 @@
 //
 // The march marched one pixel of every BxB block this frame (B = frame.reprojection.x: 4, or 2 and 1
 // near and inside a cloud layer; position frame.reprojection.yz in the block) into a block-resolution
-// image. Every full-resolution pixel here is either that fresh pixel, taken as is, or the previous
-// frame's cloud image reprojected: the pixel's ray is followed to the
+// image; in a turn, it also marched every pixel of the columns the previous frame did not see
+// (shaders/lib/new_columns.glsl), taken as is too. Every other pixel is either its block's fresh pixel,
+// taken as is, or the previous frame's cloud image reprojected: the pixel's ray is followed to the
 // cloud depth of its nearest fresh pixel (or to infinity where that ray saw no cloud), the point is
 // projected into the previous camera (axes and eye given relative to the current eye, computed in
 // double on the CPU), and the previous image is read there. History is rejected when that lands off
@@ -43,6 +44,7 @@ layout(binding = 6, r32f) uniform readonly image2D frontHistoryIn;
 layout(binding = 7, r32f) uniform writeonly image2D frontHistoryOut;
 
 #include "shaders/clouds/view_ray.glsl"
+#include "shaders/lib/new_columns.glsl"
 
 // Relative tolerance on the previous depth before a pixel counts as disoccluded (our choice: the
 // transmittance-weighted depth of a cumulus moves by less than 10% between neighbouring rays), and
@@ -260,12 +262,13 @@ void main()
         vec4 cloud;
         float depthM;
         float frontM = 0.0f;
-        if (pixel == block * B + phase)
+        ivec2 freshTexel = block;
+        if (pixel == block * B + phase || newColumnTexel(pixel, B, freshTexel))
         {
-            cloud = imageLoad(freshCloud, block);
-            depthM = imageLoad(freshDepth, block).x;
+            cloud = imageLoad(freshCloud, freshTexel);
+            depthM = imageLoad(freshDepth, freshTexel).x;
             if ((frame.image.w & FRAME_FLAG_DEPTH_LAYER) != 0u)
-                frontM = imageLoad(freshFront, block).x;
+                frontM = imageLoad(freshFront, freshTexel).x;
         }
         else
             cloud = reconstructPixel(pixel, block, phase, B, box, depthM, frontM);

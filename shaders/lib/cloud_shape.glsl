@@ -43,6 +43,41 @@ float cloudHeightProfile(int cloudType, float h)
     return saturate1(up * down);
 }
 
+// Vertical stretch of the base noise per genus (1 = isotropic, 0.35 = features ~3 times taller than
+// wide). Stretching makes clouds vertically coherent, but the noise's fine octaves stretch too and read
+// as vertical striations on every wall of a cumulus: there the domes of coverageHeightFactor give the
+// coherence instead and the noise stays nearly isotropic (bulging turrets). Stratiform decks keep the
+// stretch: their tops and bases come from the profile, and their edges stay put with height.
+float baseNoiseVerticalScale(int cloudType)
+{
+    if (cloudType == CLOUD_TYPE_CUMULUS || cloudType == CLOUD_TYPE_CUMULONIMBUS)
+        return 0.8f;
+    return 0.35f;
+}
+
+// Factor on the coverage with height (the coverage threshold rises): a vertically coherent column would
+// otherwise end in a flat plateau over vertical walls. Cumulus: only the cores of the cells reach the
+// upper part, so each cell is a dome over a flat base and cells of many heights stand side by side.
+// Cumulonimbus: the tower narrows with height (5-10 km wide at mid level, the cell wider at the base);
+// anvilShape then spreads the top again.
+float coverageHeightFactor(int cloudType, float h)
+{
+    if (cloudType == CLOUD_TYPE_CUMULUS)
+        return 1.0f - 0.8f * h * h;
+    if (cloudType == CLOUD_TYPE_CUMULONIMBUS)
+        return 1.0f - 0.35f * smoothstep(0.3f, 0.75f, h);
+    return 1.0f;
+}
+
+// Vertical profile of the anvil slab (the part spread downwind at the tropopause) at height fraction h,
+// where the slab's coverage is `coverage`: flat on top, the underside rising from 0.1 of the slab under
+// the tower to its top at the thin edge, so the anvil tapers instead of ending in a square wall.
+float anvilSlabProfile(float h, float coverage)
+{
+    float bottom = 1.0f - 0.9f * smoothstep(0.0f, 0.8f, coverage);
+    return smoothstep(bottom, min(bottom + 0.25f, 1.0f), h) * (1.0f - smoothstep(0.75f, 1.0f, h));
+}
+
 // Häggström's cumulonimbus shape: the coverage-shaped base value raised to an exponent that falls from
 // 1 to (1 - anvilAmount) between 65% and 95% of the height, so the top spreads into an anvil.
 float anvilShape(float shapeValue, float h, float anvilAmount)
@@ -59,13 +94,34 @@ float anvilDensity(float h)
     return bottom * top;
 }
 
-// The base shape remap(R, lowFreqFbm - 1, 1, 0, 1) of our 128^3 noise (lowFreqFbm half from the same
-// texel, half from an independent one: cloud_density.glsl) is close to normal with this mean and spread
+// Share of the low-frequency FBM that comes from the large-scale field (largeScaleFbm), the rest from
+// the texel of R itself. It shifts the local cloud fraction over tens of kilometres: a share of 0.5
+// turned whole 20 km regions clear or overcast at a coverage of 0.4; 0.2 keeps the data's coverage
+// meaningful over a few kilometres while cells still cluster.
+SKY_CONST float BASE_SHAPE_LARGE_WEIGHT = 0.2f;
+// Amplitude of each of the three sines of largeScaleFbm: its spread (0.1) is about that of the noise's
+// low-frequency FBM.
+SKY_CONST float LARGE_FBM_AMPLITUDE = 0.08f;
+
+// The large-scale field at noise-frame position p (m): three sines of 50-66 km wavelength around 0.5,
+// their wave vectors whole cycles per offset modulus along each axis (`radPerM` = 2 pi / the modulus),
+// so the field repeats with the offsets. Computed rather than read from a 192 km lookup of the noise as
+// it was first: lavapipe filters the 8-bit noise to 8 bits, and a lookup that coarse came back in steps
+// that cut cloud edges (tests/gpu/test_channels.cpp AChannelsEdgeMatchesACentredViewAtTheSameRays).
+float largeScaleFbm(vec3 p, float radPerM)
+{
+    vec3 c = vec3(dot(p, vec3(5.0f, 3.0f, 0.0f)), dot(p, vec3(0.0f, 4.0f, 6.0f)), dot(p, vec3(7.0f, 0.0f, 3.0f)));
+    vec3 s = sin(c * radPerM + vec3(4.2f, 1.3f, 0.4f));
+    return 0.5f + LARGE_FBM_AMPLITUDE * (s.x + s.y + s.z);
+}
+
+// The base shape remap(R, lowFreqFbm - 1, 1, 0, 1) of our 128^3 noise (lowFreqFbm from the same texel
+// and, BASE_SHAPE_LARGE_WEIGHT of it, from largeScaleFbm) is close to normal with this mean and spread
 // (measured over the texture; tests/unit/test_cloud_math.cpp keeps them true). Mapping
 // it through the normal CDF (logistic approximation, Bowling et al. 2009: 1.702) makes it uniform in
 // [0,1], so that a coverage c leaves a cloud fraction of about c where the height profile is 1.
-SKY_CONST float BASE_SHAPE_MEAN = 0.8293f;
-SKY_CONST float BASE_SHAPE_SD = 0.0457f;
+SKY_CONST float BASE_SHAPE_MEAN = 0.8299f;
+SKY_CONST float BASE_SHAPE_SD = 0.0437f;
 
 float equalizeBaseShape(float shape)
 {
@@ -92,6 +148,32 @@ float erodeWithDetail(float shape, float detailFbm, float h, float strength)
 {
     float detail = mix(detailFbm, 1.0f - detailFbm, saturate1(h * 5.0f));
     return saturate1(remapValue(shape, detail * strength, 1.0f, 0.0f, 1.0f));
+}
+
+// How far up its layer (height fraction) the base of a genus is torn: stratus and nimbostratus hang
+// ragged fragments (fractus, pannus) instead of a flat underside; 0 keeps the base flat.
+float baseRaggedness(int cloudType)
+{
+    if (cloudType == CLOUD_TYPE_STRATUS)
+        return 0.25f;
+    if (cloudType == CLOUD_TYPE_NIMBOSTRATUS)
+        return 0.2f;
+    return 0.0f;
+}
+
+// Share of the layer over which a torn base fades in above its local height.
+SKY_CONST float RAGGED_BASE_SOFTNESS = 0.05f;
+
+// Factor on the density at height fraction h of a base torn up to `raggedness` of the layer: the local
+// base lies at raggedness * tear (tear in [0,1], from the detail noise), so the underside is an uneven
+// surface with fragments hanging below the rest; 1 above raggedness + the softness. It only removes
+// cloud: nothing appears below the layer's base.
+float raggedBaseFactor(float h, float raggedness, float tear)
+{
+    if (raggedness <= 0.0f)
+        return 1.0f;
+    float localBase = raggedness * saturate1(tear);
+    return smoothstep(localBase, localBase + RAGGED_BASE_SOFTNESS, h);
 }
 
 // Rain makes bases dark: precipitation adds absorption near the base (docs/model.md). The extinction is

@@ -55,8 +55,8 @@ struct FrameParams
     // (then not unit; skyservice/render/reprojection.cpp).
     vec4 previousRight;     // xyz: previous camera right axis; w: its half image width in tangent units
     vec4 previousUp;        // xyz: previous camera up axis; w: its half image height in tangent units
-    vec4 previousForward;   // xyz: previous camera unit view axis; w: unused
-    vec4 previousEye;       // xyz: previous eye position relative to the current eye (m); w: unused
+    vec4 previousForward;   // xyz: previous camera unit view axis; w: first column marched in full (new_columns.glsl)
+    vec4 previousEye;       // xyz: previous eye position relative to the current eye (m); w: how many such columns
     // The weather window is centred on a lattice node near the eye, not on the eye
     // (skyservice/earth/window_lattice.h): window-plane position = windowOffsetM.xy + the map position
     // (m east, north of the eye) through windowAxes.
@@ -87,6 +87,9 @@ struct FrameParams
 };
 
 // frame flags
+// The noise offsets (layerNoiseOffsetM) wrap at this many high-cloud periods (noiseScale.w: 384 km by
+// default; skyservice/render/frame_setup.cpp): whatever the cloud shaders make periodic repeats with it.
+#define NOISE_OFFSET_MODULUS_HIGH_PERIODS 16
 #define FRAME_FLAG_NO_DETAIL 1u      // skip detail erosion (tests of the base shape)
 #define FRAME_FLAG_NO_HIGH_CLOUD 2u  // skip the 2D cirrus layer
 #define FRAME_FLAG_NO_LINEAR_OUTPUT 4u  // the composite writes no linear frame (none was asked for: 1x1 stand-in bound)

@@ -73,7 +73,10 @@ void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, c
     vkCmdResetQueryPool(cmd, frame.timestamps, 0, kTsCount);
     // Reprojected: one invocation per block (4x4, or finer near clouds) into the fresh images.
     const uint32_t block = reprojected ? r.reconstruct.reprojection.block.blockPx : 1u;
-    const uint32_t marchX = (request.width + block - 1) / block;
+    // And, after the blocks of each block row, one invocation per pixel of the columns the previous frame
+    // did not see (reprojection.h NewColumns): B per column.
+    const uint32_t newColumns = reprojected ? r.reconstruct.reprojection.newColumns.count : 0u;
+    const uint32_t marchX = (request.width + block - 1) / block + newColumns * block;
     const uint32_t marchY = (request.height + block - 1) / block;
     // The order of the march's workgroup rows (march_order.h), uploaded first: its barrier then waits
     // for nothing.

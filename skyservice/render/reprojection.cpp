@@ -117,6 +117,71 @@ bool historyUsable(const ReprojectionHistory& history, const ViewRequest& view, 
     return false;
 }
 
+namespace
+{
+
+// The previous camera's axes in the current ENU frame, in double (docs/datums.md): ENU(prev) -> ECEF ->
+// ENU(now). An off-centre frustum: the tangent x of a direction is measured from the image centre,
+// x - centreX = dot(v, right - centreX * forward) / dot(v, forward), so the shifted axes project with
+// the centred formula (reconstruct.comp.glsl projectPrevious). A centred one keeps the axes untouched.
+struct PreviousAxes
+{
+    glm::dvec3 right, up, forward;
+};
+
+PreviousAxes previousAxes(const ReprojectionHistory& history, const ViewTangents& t, const CameraFrame& camera)
+{
+    const CameraFrame& prev = history.lastCamera;
+    const glm::dmat3 prevToNow = glm::transpose(camera.enuToEcef) * prev.enuToEcef;
+    glm::dvec3 right = prev.rightEnu, up = prev.upEnu;
+    if (t.centreX != 0.0 || t.centreY != 0.0)
+    {
+        right -= t.centreX * prev.forwardEnu;
+        up -= t.centreY * prev.forwardEnu;
+    }
+    return {prevToNow * right, prevToNow * up, prevToNow * prev.forwardEnu};
+}
+
+}  // namespace
+
+NewColumns findNewColumns(const ReprojectionHistory& history, const ViewRequest& view, const CameraFrame& camera)
+{
+    NewColumns none;
+    if (history.block.blockPx <= 1 || view.width == 0 || view.height == 0)
+        return none;
+    // History is kept only for the same projection (historyUsable), so the previous frustum is this one.
+    const ViewTangents t = viewTangents(view);
+    const PreviousAxes prev = previousAxes(history, t, camera);
+    const glm::dvec3 centreRay = camera.forwardEnu + t.centreX * camera.rightEnu + t.centreY * camera.upEnu;
+    const double w = view.width, h = view.height;
+    // As the reconstruct pass: a column's ray at a row, projected into the previous image (pixels).
+    auto seen = [&](uint32_t x) {
+        for (double y : {0.5, 0.5 * h, h - 0.5})
+        {
+            const double nx = (x + 0.5) / w * 2.0 - 1.0, ny = y / h * 2.0 - 1.0;
+            const glm::dvec3 d = centreRay + nx * t.halfWidth * camera.rightEnu - ny * t.halfHeight * camera.upEnu;
+            const double z = glm::dot(d, prev.forward);
+            if (z <= 0.0)
+                return false;
+            const double q = (glm::dot(d, prev.right) / (z * t.halfWidth) + 1.0) * 0.5 * w;
+            if (q < 0.0 || q >= w)
+                return false;
+        }
+        return true;
+    };
+    const uint32_t most = std::min(maxNewColumns(view.width), view.width);
+    uint32_t left = 0, right = 0;
+    while (left < most && !seen(left))
+        ++left;
+    while (right < most && !seen(view.width - 1 - right))
+        ++right;
+    if (right >= left && right > 0)
+        return {view.width - right, right};
+    if (left > 0)
+        return {0, left};
+    return none;
+}
+
 void fillReprojectionParams(FrameParams& frame, const ReprojectionHistory& history, const ViewRequest& view,
                             const CameraFrame& camera, bool useHistory)
 {
@@ -129,25 +194,15 @@ void fillReprojectionParams(FrameParams& frame, const ReprojectionHistory& histo
     frame.previousEye = vec4(0.0f);
     if (!useHistory)
         return;
-    // Previous axes and eye in the current ENU frame, in double (docs/datums.md): ENU(prev) -> ECEF -> ENU(now).
-    const CameraFrame& prev = history.lastCamera;
-    glm::dmat3 ecefToEnu = glm::transpose(camera.enuToEcef);
-    glm::dmat3 prevToNow = ecefToEnu * prev.enuToEcef;
-    // History is kept only for the same projection (historyUsable), so the previous frustum is this one.
     const ViewTangents t = viewTangents(view);
-    // An off-centre frustum: the tangent x of a direction is measured from the image centre, x - centreX
-    // = dot(v, right - centreX * forward) / dot(v, forward), so the shifted axes project with the
-    // centred formula (reconstruct.comp.glsl projectPrevious). A centred one keeps the axes untouched.
-    glm::dvec3 right = prev.rightEnu, up = prev.upEnu;
-    if (t.centreX != 0.0 || t.centreY != 0.0)
-    {
-        right -= t.centreX * prev.forwardEnu;
-        up -= t.centreY * prev.forwardEnu;
-    }
-    frame.previousRight = v4(prevToNow * right, t.halfWidth);
-    frame.previousUp = v4(prevToNow * up, t.halfHeight);
-    frame.previousForward = v4(prevToNow * prev.forwardEnu, 0.0);
-    frame.previousEye = v4(ecefToEnu * (prev.eyeEcefM - camera.eyeEcefM), 0.0);
+    const PreviousAxes prev = previousAxes(history, t, camera);
+    const glm::dmat3 ecefToEnu = glm::transpose(camera.enuToEcef);
+    frame.previousRight = v4(prev.right, t.halfWidth);
+    frame.previousUp = v4(prev.up, t.halfHeight);
+    // Column numbers are exact in float (below 2^24).
+    frame.previousForward = v4(prev.forward, double(history.newColumns.x0));
+    frame.previousEye =
+        v4(ecefToEnu * (history.lastCamera.eyeEcefM - camera.eyeEcefM), double(history.newColumns.count));
 }
 
 }  // namespace sky

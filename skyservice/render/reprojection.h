@@ -53,6 +53,22 @@ struct MarchBlock
     std::string reason;    ///< why not 4 ("" when 4)
 };
 
+/// Columns at one side of the image whose rays the previous frame did not see (followed to infinity): in a
+/// turn, the band the view turns toward. The march marches every pixel of them, not one of each block,
+/// so they enter the history as marched and not interpolated from one pixel in B^2 (a fast turn would
+/// otherwise bring all its new content in blurred, for up to B^2 frames). Pitch changes are not covered:
+/// their new rows keep the interpolated fill.
+struct NewColumns
+{
+    uint32_t x0 = 0;     ///< first column
+    uint32_t count = 0;  ///< how many (0: none)
+};
+
+/// At most 1/kNewColumnsMaxShare of the width is marched that way (8 columns of 128, 240 of 3840: a turn
+/// of about 5 degrees per frame at 90 degrees of field of view); beyond it the rest keeps the fill.
+constexpr uint32_t kNewColumnsMaxShare = 16;
+inline uint32_t maxNewColumns(uint32_t widthPx) { return (widthPx + kNewColumnsMaxShare - 1) / kNewColumnsMaxShare; }
+
 /// What the renderer remembers of the last reprojected frame.
 struct ReprojectionHistory
 {
@@ -64,6 +80,7 @@ struct ReprojectionHistory
     CameraFrame lastCamera;      ///< its camera, in double
     std::string lastDropReason;  ///< why the last reprojected frame did not use history ("" if it did)
     MarchBlock block;            ///< the march block of the frame being (or last) rendered
+    NewColumns newColumns;       ///< the columns that frame marches in full (none without history)
 };
 
 /// Position (x, y in 0..blockPx-1) of the marched pixel inside every block on frame `frameIndex`: the
@@ -86,9 +103,15 @@ MarchBlock chooseMarchBlock(const WeatherWindow& window, double eyeAltitudeM,
 bool historyUsable(const ReprojectionHistory& history, const ViewRequest& view, const CameraFrame& camera,
                    std::string& why);
 
+/// The columns of `view` (on `camera`) that the last frame in `history` did not see: on the side with
+/// more of them, counted from the image border inward while a column's rays at its top, middle and
+/// bottom all or partly fall off the previous image (left or right of it, or behind), at most
+/// maxNewColumns. None when the march block is 1 (every pixel is marched anyway).
+NewColumns findNewColumns(const ReprojectionHistory& history, const ViewRequest& view, const CameraFrame& camera);
+
 /// Fills frame.reprojection (block size history.block.blockPx, its phase), frame.previousRight/Up/Forward
 /// and frame.previousEye for a reprojected frame on `camera` (useHistory false: the reconstruct pass
-/// ignores the history images).
+/// ignores the history images), history.newColumns in previousForward.w and previousEye.w.
 void fillReprojectionParams(FrameParams& frame, const ReprojectionHistory& history, const ViewRequest& view,
                             const CameraFrame& camera, bool useHistory);
 

@@ -185,28 +185,32 @@ TEST(CloudMath, EnergyConservingIntegrationIsSplitInvariant)
 }
 
 // The coverage mapping assumes the base shape's distribution (BASE_SHAPE_MEAN, BASE_SHAPE_SD in
-// cloud_shape.glsl): recompute it from the noise recipe, as cloud_density.glsl combines it (R and half
-// of the low-frequency FBM from one texel, the other half from an independent one), 8-bit quantised.
+// cloud_shape.glsl): recompute it from the noise recipe, as cloud_density.glsl combines it (R and most
+// of the low-frequency FBM from one texel, 8-bit quantised, BASE_SHAPE_LARGE_WEIGHT from largeScaleFbm at a
+// random place).
 TEST(CloudMath, BaseShapeStatisticsMatchTheEqualisationConstants)
 {
     std::mt19937 rng(3);
     std::uniform_int_distribution<uint32_t> texel(0, BASE_NOISE_SIZE - 1);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const float modulusM = 384000.0f;  // the offset modulus by default (frame_params.h)
     double sum = 0, sumSq = 0;
     const int n = 20000;
     std::vector<float> equalised;
     for (int i = 0; i < n; ++i)
     {
         glm::vec4 a = glsl::baseNoiseTexel(glm::uvec3(texel(rng), texel(rng), texel(rng)), BASE_NOISE_SIZE, 1u);
-        glm::vec4 b = glsl::baseNoiseTexel(glm::uvec3(texel(rng), texel(rng), texel(rng)), BASE_NOISE_SIZE, 1u);
         a = glm::round(a * 255.0f) / 255.0f;
-        b = glm::round(b * 255.0f) / 255.0f;
-        float low = 0.5f * (a.y * 0.625f + a.z * 0.25f + a.w * 0.125f) + 0.5f * (b.y * 0.625f + b.z * 0.25f + b.w * 0.125f);
+        const glm::vec3 place(modulusM * unit(rng), modulusM * unit(rng), modulusM * unit(rng));
+        const float large = glsl::largeScaleFbm(place, float(2.0 * M_PI / double(modulusM)));
+        float low = glm::mix(a.y * 0.625f + a.z * 0.25f + a.w * 0.125f, large, glsl::BASE_SHAPE_LARGE_WEIGHT);
         float shape = glsl::remapValue(a.x, low - 1.0f, 1.0f, 0.0f, 1.0f);
         sum += double(shape);
         sumSq += double(shape) * double(shape);
         equalised.push_back(glsl::equalizeBaseShape(shape));
     }
     double mean = sum / n, sd = std::sqrt(sumSq / n - mean * mean);
+    std::printf("base shape: mean %.4f, sd %.4f\n", mean, sd);
     EXPECT_NEAR(mean, double(glsl::BASE_SHAPE_MEAN), 0.003);
     EXPECT_NEAR(sd, double(glsl::BASE_SHAPE_SD), 0.003);
     // Equalised, the shape is close to uniform: coverage c leaves a fraction ~c (within 0.04).
@@ -297,4 +301,55 @@ TEST(CloudHistory, PacksRadianceAlphaAndDepthWithinTheStatedPrecision)
     EXPECT_EQ(big, glm::vec4(glsl::kHistoryMaxRadiance, 0.0f, 0.0f, 1.0f));
     EXPECT_NEAR(d, glsl::kHistoryMaxDepthM, 0.001f * glsl::kHistoryMaxDepthM);
     EXPECT_EQ(glsl::unpackCloudHistory(glsl::packCloudHistory(glm::vec4(0.0f), 0.0f), d), glm::vec4(0.0f));
+}
+
+// Cumulus domes (issue 22): the coverage threshold rises with height, so the cloud narrows toward its
+// top instead of standing as a column with vertical walls; other stratiform genera keep theirs.
+TEST(CloudMath, CumulusNarrowsWithHeightAndTheAnvilThinsTowardItsEdge)
+{
+    float previous = 2.0f;
+    for (float h = 0.0f; h <= 1.0f; h += 0.1f)
+    {
+        const float f = glsl::coverageHeightFactor(CLOUD_TYPE_CUMULUS, h);
+        EXPECT_LE(f, previous) << h;
+        EXPECT_GE(f, 0.0f);
+        previous = f;
+    }
+    EXPECT_LT(glsl::coverageHeightFactor(CLOUD_TYPE_CUMULUS, 0.8f), 0.5f);
+    EXPECT_EQ(glsl::coverageHeightFactor(CLOUD_TYPE_STRATUS, 0.8f), 1.0f);
+    // The anvil slab: thick where its coverage is high, nothing below its upper part at a thin edge.
+    EXPECT_GT(glsl::anvilSlabProfile(0.4f, 1.0f), 0.9f);
+    EXPECT_EQ(glsl::anvilSlabProfile(0.4f, 0.3f), 0.0f);
+    EXPECT_GT(glsl::anvilSlabProfile(0.85f, 0.3f), 0.2f);
+    EXPECT_EQ(glsl::anvilSlabProfile(1.0f, 1.0f), 0.0f);  // flat top
+}
+
+// Ragged bases (issue 22): stratus and nimbostratus bases are torn up to a share of the layer, other
+// genera keep a flat base; the factor only removes cloud (never above 1, 0 below the local base), is 1
+// above the torn part, and where the tear is 0 the base stays where it was.
+TEST(CloudMath, StratusAndNimbostratusBasesAreRagged)
+{
+    EXPECT_GT(glsl::baseRaggedness(CLOUD_TYPE_STRATUS), 0.0f);
+    EXPECT_GT(glsl::baseRaggedness(CLOUD_TYPE_NIMBOSTRATUS), 0.0f);
+    EXPECT_EQ(glsl::baseRaggedness(CLOUD_TYPE_CUMULUS), 0.0f);
+    EXPECT_EQ(glsl::baseRaggedness(CLOUD_TYPE_STRATOCUMULUS), 0.0f);
+    const float r = glsl::baseRaggedness(CLOUD_TYPE_STRATUS);
+    for (float tear = 0.0f; tear <= 1.0f; tear += 0.25f)
+        for (float h = 0.0f; h <= 1.0f; h += 0.05f)
+        {
+            const float f = glsl::raggedBaseFactor(h, r, tear);
+            EXPECT_GE(f, 0.0f);
+            EXPECT_LE(f, 1.0f);
+            if (h < r * tear)
+            {
+                EXPECT_EQ(f, 0.0f) << h << " " << tear;
+            }
+            if (h >= r + glsl::RAGGED_BASE_SOFTNESS)
+            {
+                EXPECT_EQ(f, 1.0f) << h << " " << tear;
+            }
+        }
+    EXPECT_EQ(glsl::raggedBaseFactor(0.1f, r, 1.0f), 0.0f) << "a full tear lifts the base";
+    EXPECT_GT(glsl::raggedBaseFactor(0.1f, r, 0.0f), 0.9f) << "no tear keeps it";
+    EXPECT_EQ(glsl::raggedBaseFactor(0.0f, 0.0f, 1.0f), 1.0f) << "flat bases are untouched";
 }

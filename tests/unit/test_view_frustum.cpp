@@ -2,7 +2,9 @@
 // Off-centre frusta (skyservice/render/view_frustum.h) in the frame's uniforms: the rays that
 // shaders/clouds/view_ray.glsl makes of them reach the frustum's edges, and the previous camera's
 // projection (reconstruct.comp.glsl projectPrevious, fed by fillReprojectionParams) takes each pixel's
-// ray back to its pixel; a changed frustum drops the history; bad angles are named.
+// ray back to its pixel; a changed frustum drops the history; bad angles are named. In a turn, the
+// columns the previous frame did not see (findNewColumns, marched in full) are those whose rays that
+// projection takes off the previous image.
 #include "skyservice/render/frame_setup.h"
 #include "skyservice/render/reprojection.h"
 #include "skyservice/render/view_frustum.h"
@@ -141,4 +143,61 @@ TEST(ViewFrustum, BadAnglesAreNamed)
     EXPECT_NE(error.find("left + right"), std::string::npos) << error;
     EXPECT_FALSE(validateFrustum(Frustum{true, 10.0, 10.0, -30.0, 30.5}, error));
     EXPECT_NE(error.find("up + down"), std::string::npos) << error;
+}
+
+// A right turn of one degree brings new columns in at the right border, a left turn at the left one; the
+// band ends where the previous image begins (the projection above: the first column inside it has all
+// three rays on the previous image, the band's last one not); a large turn is capped, no turn or a block
+// of 1 marches none; the band reaches the shader in previousForward.w and previousEye.w.
+TEST(ViewFrustum, ATurnMarchesTheColumnsThePreviousFrameDidNotSee)
+{
+    for (bool asymmetric : {false, true})
+    {
+        ViewRequest request = offCentre();
+        request.frustum.asymmetric = asymmetric;
+        request.fovYDeg = 40.0;
+        const CameraFrame last = computeCameraFrame(request.pose);
+        ReprojectionHistory history;
+        history.valid = true;
+        history.lastView = request;
+        history.lastCamera = last;
+        history.block.blockPx = 4;
+        auto turned = [&](double deg, FrameParams* f = nullptr) {
+            ViewRequest v = request;
+            v.pose.headingDeg += deg;
+            const CameraFrame cam = computeCameraFrame(v.pose);
+            ReprojectionHistory h = history;
+            h.newColumns = findNewColumns(h, v, cam);
+            if (f)
+            {
+                *f = frameFor(cam, v);
+                fillReprojectionParams(*f, h, v, cam, true);
+            }
+            return h.newColumns;
+        };
+        FrameParams f;
+        const NewColumns right = turned(1.0, &f);
+        ASSERT_GT(right.count, 0u) << asymmetric;
+        EXPECT_EQ(right.x0 + right.count, request.width);
+        EXPECT_EQ(f.previousForward.w, float(right.x0));
+        EXPECT_EQ(f.previousEye.w, float(right.count));
+        auto inside = [&](double x) {
+            bool all = true;
+            for (double y : {0.5, 24.0, 47.5})
+            {
+                const double q = projectPrevious(f, viewRay(f, x, y)).x;
+                all = all && q >= 0.0 && q < request.width;
+            }
+            return all;
+        };
+        EXPECT_TRUE(inside(right.x0 - 0.5)) << "the column before the band was seen";
+        EXPECT_FALSE(inside(right.x0 + 0.5)) << "the band's first column was not";
+        const NewColumns left = turned(-1.0);
+        EXPECT_EQ(left.x0, 0u);
+        EXPECT_GT(left.count, 0u);
+        EXPECT_EQ(turned(0.0).count, 0u);
+        EXPECT_EQ(turned(20.0).count, maxNewColumns(request.width));
+        history.block.blockPx = 1;
+        EXPECT_EQ(turned(1.0).count, 0u);
+    }
 }
