@@ -66,6 +66,7 @@ struct BenchOptions
     bool noDetail = false;
     bool noSkipping = false;
     bool noCostOrder = false;
+    bool lookupTotals = false;
     double coneTailReuseM = -1;  ///< < 0: the renderer's default
     double coneTailReuseBeyondM = -1;  ///< < 0: the renderer's default
     double deepLightReuseM = -1;       ///< < 0: the renderer's default
@@ -104,7 +105,7 @@ nlohmann::json qualityJson(const QualitySettings& q, const RenderTuning& t)
             {"maxStepOpticalDepth", q.maxStepOpticalDepth}, {"emptySpaceSkipping", t.emptySpaceSkipping},
             {"lightVolumeFarCascade", t.lightVolumeFarCascade}, {"coneTailReuseM", t.coneTailReuseM},
             {"coneTailReuseBeyondM", t.coneTailReuseBeyondM}, {"deepLightReuseM", t.deepLightReuseM},
-            {"coneNearMergeBeyondM", t.coneNearMergeBeyondM}};
+            {"coneNearMergeBeyondM", t.coneNearMergeBeyondM}, {"marchLookupTotals", t.marchLookupTotals}};
 }
 
 // Box-filters an image down by an integer factor (contact sheet tiles only).
@@ -241,6 +242,8 @@ int runBench(const BenchOptions& o)
         quality.detail = false;
     if (o.noCostOrder)
         tuning.costOrderedMarch = false;
+    if (o.lookupTotals)
+        tuning.marchLookupTotals = true;
     if (o.coneTailReuseM >= 0)
         tuning.coneTailReuseM = o.coneTailReuseM;
     if (o.coneTailReuseBeyondM >= 0)
@@ -370,6 +373,8 @@ int main(int argc, char** argv)
         ->check(CLI::Range(0, 6));
     app.add_flag("--no-detail", o.noDetail, "Turn the detail erosion off");
     app.add_flag("--no-skipping", o.noSkipping, "Turn the march's empty-space skipping off (search every step)");
+    app.add_flag("--lookup-totals", o.lookupTotals,
+                 "The JSON's marchRowLookups sum every ray's march iterations (not the slowest per workgroup)");
     app.add_flag("--no-cost-order", o.noCostOrder,
                  "Launch the march's workgroup rows in the interleaved order, not costliest first");
     app.add_option("--cone-tail-reuse", o.coneTailReuseM,

@@ -58,7 +58,8 @@ struct BenchSceneResult
     uint32_t marchBlockPx = 1;        ///< RenderResult::marchBlockPx of the checked frame (4, or 2/1 near clouds)
     std::string marchBlockReason;     ///< and why it was not 4
     /// RenderResult::marchRowLookups of the checked frame: per workgroup row (top first) the sum over its
-    /// workgroups of their slowest ray's march iterations. Where the march's cost lies, without a shader patch.
+    /// workgroups of their slowest ray's march iterations (with --lookup-totals: of every ray's). Where the
+    /// march's cost lies, without a shader patch.
     std::vector<uint32_t> marchRowLookups;
 };
 
