@@ -131,7 +131,7 @@ ImageRgba8 shrink(const std::vector<uint8_t>& rgba, uint32_t width, uint32_t hei
 
 void checkPicture(const RenderResult& result, BenchSceneResult& out)
 {
-    size_t pixels = size_t(result.width) * result.height, cloud = 0;
+    size_t pixels = size_t(result.width) * result.height, cloud = 0, anyCloud = 0;
     for (size_t i = 0; i < pixels * 4; ++i)
     {
         float c = glm::unpackHalf1x16(result.cloudRgbaHalf[i]);
@@ -140,8 +140,11 @@ void checkPicture(const RenderResult& result, BenchSceneResult& out)
             out.allFinite = false;
         if (i % 4 == 3 && c > 0.5f)
             ++cloud;
+        if (i % 4 == 3 && c > 0.0f)
+            ++anyCloud;
     }
     out.cloudFraction = pixels ? double(cloud) / double(pixels) : 0.0;
+    out.anyCloudFraction = pixels ? double(anyCloud) / double(pixels) : 0.0;
 }
 
 SkyStatus runScene(Renderer& r, const BenchOptions& o, const BenchScene& scene, const QualitySettings& quality,

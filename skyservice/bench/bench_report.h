@@ -54,6 +54,9 @@ struct BenchSceneResult
     std::vector<double> cpuSetupMs;   ///< RenderResult::cpuSetupMs (weather window, lighting), ms
     double sunElevationDeg = 0;
     double cloudFraction = 0;         ///< share of pixels with cloud alpha > 0.5 (one checked frame)
+    /// Share of pixels with any cloud (alpha > 0): where the composite reads the aerial-perspective LUT
+    /// and the reconstruct pass follows the cloud's depth (their cost grows with it).
+    double anyCloudFraction = 0;
     bool allFinite = true;            ///< every value of the checked frame finite and >= 0
     uint32_t marchBlockPx = 1;        ///< RenderResult::marchBlockPx of the checked frame (4, or 2/1 near clouds)
     std::string marchBlockReason;     ///< and why it was not 4
