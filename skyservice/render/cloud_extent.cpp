@@ -79,12 +79,6 @@ const std::array<Table, kTypes>& layerTables()
     return tables;
 }
 
-const Table& anvilTable()
-{
-    static const Table table = tabulate([](float h, float c) { return glsl::anvilSlabMayHoldCloud(h, c); });
-    return table;
-}
-
 HeightFractionRange lookUp(const Table& t, float maxCoverage)
 {
     if (!(maxCoverage <= 1.0f))
@@ -100,7 +94,5 @@ HeightFractionRange layerCloudRange(int cloudType, float maxCoverage)
     const int type = cloudType >= 0 && cloudType < kTypes ? cloudType : CLOUD_TYPE_NONE;
     return lookUp(layerTables()[size_t(type)], maxCoverage);
 }
-
-HeightFractionRange anvilSlabCloudRange(float maxCoverage) { return lookUp(anvilTable(), maxCoverage); }
 
 }  // namespace sky

@@ -26,7 +26,4 @@ struct HeightFractionRange
  **********************************************************************/
 HeightFractionRange layerCloudRange(int cloudType, float maxCoverage);
 
-/// The same for the anvil slab (anvilSlabMayHoldCloud): its coverage also shapes its profile.
-HeightFractionRange anvilSlabCloudRange(float maxCoverage);
-
 }  // namespace sky
