@@ -2,6 +2,8 @@
 // Cloud density at a point: weather window lookup, base shape, coverage, anvils, detail erosion.
 // Included by cloud passes after the FrameBlock and the texture bindings.
 
+#include "shaders/lib/cloud_extent.glsl"
+
 // Extinction relative to cloudLook.x per genus: stratiform decks are optically thinner per metre.
 float genusDensityScale(int cloudType)
 {
@@ -114,7 +116,7 @@ struct DensitySample
     float density;   // relative density (multiplies cloudLook.x for the extinction per metre)
     float rainMmH;   // precipitation rate of the densest layer here (mm/h), for rain darkening
     float heightFraction;  // 0 at the base, 1 at the top of the layer that contributed most
-    bool inLayer;    // a layer's coverage and altitude range hold the point (its noise may still leave it empty)
+    bool inLayer;    // a layer may hold cloud at the point (cloud_extent.glsl; its noise may still leave it empty)
 };
 
 DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
@@ -145,10 +147,13 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         float top = layer.z;
         if (coverage < CLOUD_COVERAGE_MIN || top <= base || h < base || h > top)
             continue;
-        s.inLayer = true;
         float hf = (h - base) / (top - base);
         int cloudType = anvilSlab ? CLOUD_TYPE_CUMULONIMBUS
                                   : int(texelFetch(weatherWindow, ivec3(w.texel, k), 0).w + 0.5f);
+        // Above the domes, in an anvil's thin edge: no noise reaches the coverage (cloud_extent.glsl).
+        if (!(anvilSlab ? anvilSlabMayHoldCloud(hf, coverage) : layerMayHoldCloud(cloudType, hf, coverage, range.z)))
+            continue;
+        s.inLayer = true;
         vec3 shear = vec3(frame.layerShearM[k].xy * hf, 0.0f);
         vec3 noisePos = toNoiseFrame(-shear) + noiseRel + frame.layerNoiseOffsetM[k].xyz;
         // The base shape varies slowly with height: its lookup point slides down the local vertical

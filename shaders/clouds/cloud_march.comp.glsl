@@ -49,7 +49,7 @@ layout(binding = 13, std430) buffer MarchOrderBlock
 // The cloud's front distance (m) beside depthOut: only with FRAME_FLAG_DEPTH_LAYER (a 1x1 stand-in otherwise).
 layout(binding = 14, r32f) uniform writeonly image2D frontOut;
 
-// The largest density-lookup count of this workgroup's rays.
+// The largest density-lookup count of this workgroup's rays (their sum with FRAME_FLAG_LOOKUP_TOTALS).
 shared uint groupLookups;
 
 #include "shaders/lib/atmosphere_sampling.glsl"
@@ -126,7 +126,13 @@ void main()
     if (block > 1u && int(id.x) >= newColumnsTexelX0(int(block)))
         pixel = newColumnPixel(ivec2(id), int(block));
     if (pixel.x >= 0 && pixel.x < int(frame.image.x) && pixel.y < int(frame.image.y))
-        atomicMax(groupLookups, marchPixel(pixel, ivec2(id)));
+    {
+        uint lookups = marchPixel(pixel, ivec2(id));
+        if ((frame.image.w & FRAME_FLAG_LOOKUP_TOTALS) != 0u)
+            atomicAdd(groupLookups, lookups);
+        else
+            atomicMax(groupLookups, lookups);
+    }
     barrier();
     if (gl_LocalInvocationIndex == 0u)
         atomicAdd(marchOrder.rowLookups[groupRow], groupLookups);

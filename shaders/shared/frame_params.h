@@ -102,5 +102,8 @@ struct FrameParams
 // The depth layer (front and weighted cloud distance, RG32F): the march stores each ray's front distance, the
 // reconstruct pass carries it through its own history, the composite writes the layer.
 #define FRAME_FLAG_DEPTH_LAYER 256u
+// The march's row counts (march_order.h rowLookups) sum the lookups of every ray instead of taking the
+// slowest ray of each workgroup: the work a frame does, for counting (RenderTuning::marchLookupTotals).
+#define FRAME_FLAG_LOOKUP_TOTALS 512u
 
 #endif

@@ -66,6 +66,7 @@ struct BenchOptions
     bool noDetail = false;
     bool noSkipping = false;
     bool noCostOrder = false;
+    bool lookupTotals = false;
     double coneTailReuseM = -1;  ///< < 0: the renderer's default
     double coneTailReuseBeyondM = -1;  ///< < 0: the renderer's default
     double deepLightReuseM = -1;       ///< < 0: the renderer's default
@@ -104,7 +105,7 @@ nlohmann::json qualityJson(const QualitySettings& q, const RenderTuning& t)
             {"maxStepOpticalDepth", q.maxStepOpticalDepth}, {"emptySpaceSkipping", t.emptySpaceSkipping},
             {"lightVolumeFarCascade", t.lightVolumeFarCascade}, {"coneTailReuseM", t.coneTailReuseM},
             {"coneTailReuseBeyondM", t.coneTailReuseBeyondM}, {"deepLightReuseM", t.deepLightReuseM},
-            {"coneNearMergeBeyondM", t.coneNearMergeBeyondM}};
+            {"coneNearMergeBeyondM", t.coneNearMergeBeyondM}, {"marchLookupTotals", t.marchLookupTotals}};
 }
 
 // Box-filters an image down by an integer factor (contact sheet tiles only).
@@ -130,7 +131,7 @@ ImageRgba8 shrink(const std::vector<uint8_t>& rgba, uint32_t width, uint32_t hei
 
 void checkPicture(const RenderResult& result, BenchSceneResult& out)
 {
-    size_t pixels = size_t(result.width) * result.height, cloud = 0;
+    size_t pixels = size_t(result.width) * result.height, cloud = 0, anyCloud = 0;
     for (size_t i = 0; i < pixels * 4; ++i)
     {
         float c = glm::unpackHalf1x16(result.cloudRgbaHalf[i]);
@@ -139,8 +140,11 @@ void checkPicture(const RenderResult& result, BenchSceneResult& out)
             out.allFinite = false;
         if (i % 4 == 3 && c > 0.5f)
             ++cloud;
+        if (i % 4 == 3 && c > 0.0f)
+            ++anyCloud;
     }
     out.cloudFraction = pixels ? double(cloud) / double(pixels) : 0.0;
+    out.anyCloudFraction = pixels ? double(anyCloud) / double(pixels) : 0.0;
 }
 
 SkyStatus runScene(Renderer& r, const BenchOptions& o, const BenchScene& scene, const QualitySettings& quality,
@@ -241,6 +245,8 @@ int runBench(const BenchOptions& o)
         quality.detail = false;
     if (o.noCostOrder)
         tuning.costOrderedMarch = false;
+    if (o.lookupTotals)
+        tuning.marchLookupTotals = true;
     if (o.coneTailReuseM >= 0)
         tuning.coneTailReuseM = o.coneTailReuseM;
     if (o.coneTailReuseBeyondM >= 0)
@@ -370,6 +376,8 @@ int main(int argc, char** argv)
         ->check(CLI::Range(0, 6));
     app.add_flag("--no-detail", o.noDetail, "Turn the detail erosion off");
     app.add_flag("--no-skipping", o.noSkipping, "Turn the march's empty-space skipping off (search every step)");
+    app.add_flag("--lookup-totals", o.lookupTotals,
+                 "The JSON's marchRowLookups sum every ray's march iterations (not the slowest per workgroup)");
     app.add_flag("--no-cost-order", o.noCostOrder,
                  "Launch the march's workgroup rows in the interleaved order, not costliest first");
     app.add_option("--cone-tail-reuse", o.coneTailReuseM,

@@ -122,6 +122,7 @@ nlohmann::json benchToJson(const BenchRun& run)
                             {"fovYDeg", s.scene.fovYDeg}}},
                           {"sunElevationDeg", s.sunElevationDeg},
                           {"cloudFraction", s.cloudFraction},
+                          {"anyCloudFraction", s.anyCloudFraction},
                           {"allFinite", s.allFinite},
                           {"marchBlockPx", s.marchBlockPx},
                           {"marchBlockReason", s.marchBlockReason},

@@ -54,11 +54,15 @@ struct BenchSceneResult
     std::vector<double> cpuSetupMs;   ///< RenderResult::cpuSetupMs (weather window, lighting), ms
     double sunElevationDeg = 0;
     double cloudFraction = 0;         ///< share of pixels with cloud alpha > 0.5 (one checked frame)
+    /// Share of pixels with any cloud (alpha > 0): where the composite reads the aerial-perspective LUT
+    /// and the reconstruct pass follows the cloud's depth (their cost grows with it).
+    double anyCloudFraction = 0;
     bool allFinite = true;            ///< every value of the checked frame finite and >= 0
     uint32_t marchBlockPx = 1;        ///< RenderResult::marchBlockPx of the checked frame (4, or 2/1 near clouds)
     std::string marchBlockReason;     ///< and why it was not 4
     /// RenderResult::marchRowLookups of the checked frame: per workgroup row (top first) the sum over its
-    /// workgroups of their slowest ray's march iterations. Where the march's cost lies, without a shader patch.
+    /// workgroups of their slowest ray's march iterations (with --lookup-totals: of every ray's). Where the
+    /// march's cost lies, without a shader patch.
     std::vector<uint32_t> marchRowLookups;
 };
 

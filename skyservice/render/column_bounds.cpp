@@ -2,6 +2,7 @@
 #include "skyservice/render/column_bounds.h"
 
 #include "shaders/shared/column_bounds.h"
+#include "skyservice/render/cloud_extent.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,28 +40,69 @@ std::vector<uint8_t> buildColumnBounds(const WeatherWindow& window)
     const uint32_t width = columnBoundsWidth(n);
     std::vector<uint8_t> atlas(size_t(width) * n * 2, 0);
     // Level 0: per texel, over the layers (and the anvil slab) that reach CLOUD_COVERAGE_MIN anywhere in
-    // the 3x3 neighbourhood, the lowest base and highest top of that neighbourhood: a bilinear lookup
-    // inside the texel's cell mixes only those texels (shaders/shared/column_bounds.h).
+    // the 3x3 neighbourhood: a bilinear lookup inside the texel's cell mixes only those texels
+    // (shaders/shared/column_bounds.h). Within a layer cloud lies only between the height fractions where
+    // the genus may hold it at the neighbourhood's largest coverage (cloud_extent.h: a cumulus's domes
+    // leave the top of the layer empty), and a point at height fraction f of the interpolated layer lies
+    // at the same mix of the texels' base + f (top - base): between the least and the largest of those.
     std::vector<uint8_t> base(size_t(n) * n, kEmptyBase), top(size_t(n) * n, kEmptyTop);
+    constexpr float kInf = std::numeric_limits<float>::infinity();
     for (int k = 0; k <= MAX_CLOUD_LAYERS; ++k)
     {
-        const uint32_t slice = k == MAX_CLOUD_LAYERS ? uint32_t(WEATHER_WINDOW_ANVIL_SLICE) : uint32_t(2 * k);
+        const bool anvil = k == MAX_CLOUD_LAYERS;
+        const uint32_t slice = anvil ? uint32_t(WEATHER_WINDOW_ANVIL_SLICE) : uint32_t(2 * k);
         for (uint32_t j = 0; j < n; ++j)
             for (uint32_t i = 0; i < n; ++i)
             {
                 bool covered = false;
-                float lo = std::numeric_limits<float>::infinity(), hi = -std::numeric_limits<float>::infinity();
+                float maxCoverage = 0.0f;
+                for (uint32_t b = j > 0 ? j - 1 : 0; b <= std::min(j + 1, n - 1); ++b)
+                    for (uint32_t a = i > 0 ? i - 1 : 0; a <= std::min(i + 1, n - 1); ++a)
+                    {
+                        const float c = window.at(slice, a, b).x;
+                        // NaN coverage counts as covered, and as any coverage: the bound must never hide a cloud.
+                        covered = covered || !(c < CLOUD_COVERAGE_MIN);
+                        maxCoverage = std::isnan(c) ? c : std::max(maxCoverage, c);
+                    }
+                if (!covered)
+                    continue;
+                // The height fractions the neighbourhood's genera (the shaders take a texel's own, nearest)
+                // may fill; an unreadable genus, the whole layer.
+                HeightFractionRange range{1.0f, 0.0f};
+                for (uint32_t b = j > 0 ? j - 1 : 0; b <= std::min(j + 1, n - 1); ++b)
+                    for (uint32_t a = i > 0 ? i - 1 : 0; a <= std::min(i + 1, n - 1); ++a)
+                    {
+                        const float type = window.at(slice, a, b).w;
+                        // The anvil slab keeps its whole layer: bounded by anvilSlabCloudRange, its thin
+                        // edge emptied columns beside the Cb's tower, and the search's jumps there moved
+                        // the tower's samples (gpu.GpuRender.EmptySpaceSkippingDrawsTheSameClouds: 39.6
+                        // against 46-47 dB). cloudDensity still skips the noise there.
+                        HeightFractionRange r;  // the whole layer
+                        if (!anvil && std::isfinite(type))
+                            r = layerCloudRange(int(type + 0.5f), maxCoverage);
+                        range = {std::min(range.lo, r.lo), std::max(range.hi, r.hi)};
+                    }
+                if (range.empty())
+                    continue;
+                float lo = kInf, hi = -kInf;
                 for (uint32_t b = j > 0 ? j - 1 : 0; b <= std::min(j + 1, n - 1); ++b)
                     for (uint32_t a = i > 0 ? i - 1 : 0; a <= std::min(i + 1, n - 1); ++a)
                     {
                         const glm::vec4& t = window.at(slice, a, b);
-                        // NaN coverage counts as covered: the bound must never hide a cloud.
-                        covered = covered || !(t.x < CLOUD_COVERAGE_MIN);
-                        lo = std::isfinite(t.y) ? std::min(lo, t.y) : -std::numeric_limits<float>::infinity();
-                        hi = std::isfinite(t.z) ? std::max(hi, t.z) : std::numeric_limits<float>::infinity();
+                        if (!std::isfinite(t.y) || !std::isfinite(t.z))
+                        {
+                            // Unknown altitude: unbounded on its side; the known end still bounds its own.
+                            lo = std::isfinite(t.y) ? std::min(lo, t.y) : -kInf;
+                            hi = std::isfinite(t.z) ? std::max(hi, t.z) : kInf;
+                            continue;
+                        }
+                        for (float f : {range.lo, range.hi})
+                        {
+                            const float h = t.y + f * (t.z - t.y);
+                            lo = std::min(lo, h);
+                            hi = std::max(hi, h);
+                        }
                     }
-                if (!covered)
-                    continue;
                 const size_t c = size_t(j) * n + i;
                 base[c] = std::min(base[c], encodeBase(lo));
                 top[c] = std::max(top[c], encodeTop(hi));

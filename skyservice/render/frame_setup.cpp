@@ -145,6 +145,8 @@ FrameParams makeFrameParams(const FrameInputs& in)
         flags |= FRAME_FLAG_REPROJECTED;
     if (!t.emptySpaceSkipping)
         flags |= FRAME_FLAG_NO_SKIPPING;
+    if (t.marchLookupTotals)
+        flags |= FRAME_FLAG_LOOKUP_TOTALS;
     f.image = uvec4(req.width, req.height, 0u, flags);
     f.march = uvec4(q.maxViewSteps, q.lightSamples, uint32_t(std::clamp(t.coneNearMergeBeyondM, 0.0, 1e9)), 0u);
     f.marchLod = vec4(float(t.detailFadeStartM), float(std::max(t.detailFadeEndM, t.detailFadeStartM + 1.0)),

@@ -49,6 +49,10 @@ struct RenderTuning
     /// same shape counted (shaders/shared/march_order.h); false: always the interleaved order (A/B). It
     /// changes no pixel. H200, 1080p: see BENCHMARKS.md.
     bool costOrderedMarch = true;
+    /// The march's row counts (RenderResult::marchRowLookups) sum every ray's density lookups instead of
+    /// taking the slowest ray of each workgroup: the work of a frame per pixel, for sky-bench's
+    /// --lookup-totals and the tests that count it (the launch order then follows the totals).
+    bool marchLookupTotals = false;
 
     bool operator==(const RenderTuning&) const = default;
 };
