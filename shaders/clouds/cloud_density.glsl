@@ -2,8 +2,6 @@
 // Cloud density at a point: weather window lookup, base shape, coverage, anvils, detail erosion.
 // Included by cloud passes after the FrameBlock and the texture bindings.
 
-// Vertical stretch of the base noise: 1 = isotropic, 0.35 = features ~3 times taller than wide.
-const float BASE_NOISE_VERTICAL_SCALE = 0.35f;
 // Extinction relative to cloudLook.x per genus: stratiform decks are optically thinner per metre.
 float genusDensityScale(int cloudType)
 {
@@ -60,14 +58,28 @@ WeatherLookup weatherLookup(vec2 mapPosM)
     return w;
 }
 
-// Base shape from the Perlin-Worley noise (Schneider: remap(R, lowFreqFBM - 1, 1, 0, 1)).
-float baseShapeAt(vec3 noisePos)
+// The large-scale lookup: the base noise read at BASE_NOISE_LARGE_SCALE times its period (192 km by
+// default, wider than the 150 km shadow map; frame_setup.cpp keeps it a divisor of the offset modulus).
+// It gives BASE_SHAPE_LARGE_WEIGHT of the low-frequency FBM (so cloud fraction and cell size vary over
+// tens of kilometres) and a smooth 3D warp of the regular lookup, so that the 8 km tile never lines up
+// with itself: near 44 N 8.5 E the lattice vector (-8, 0, 8) km lies in the horizontal plane, and without
+// the warp the shadow map correlated 0.82 with itself 11 km north (tests/gpu/test_cloud_shapes.cpp).
+const float BASE_NOISE_LARGE_SCALE = 24.0f;
+// Warp amplitude in base-noise periods, times the spread of the Worley FBM channels (about +-0.15 around
+// 0.5): cells move by a kilometre or two relative to cells 10 km away (autocorrelation peak 0.46 at 0.3,
+// under 0.1 at 1); more stretches the cells visibly.
+const float BASE_NOISE_WARP = 1.0f;
+
+// Base shape from the Perlin-Worley noise (Schneider: remap(R, lowFreqFBM - 1, 1, 0, 1)) at `noisePos`,
+// warped by the large-scale lookup at `largePos` (the unslid position: the warp is the same up a column).
+float baseShapeAt(vec3 noisePos, vec3 largePos)
 {
-    vec4 n = textureLod(baseNoise, noisePos / frame.noiseScale.x, 0.0f);
-    // Half of the low-frequency FBM comes from a second lookup at 3x the period, so that the 128^3 tile
-    // does not visibly repeat every period across a wide view or the shadow map (it repeats every 3).
-    vec4 m = textureLod(baseNoise, noisePos / (3.0f * frame.noiseScale.x) + vec3(0.37f, 0.11f, 0.73f), 0.0f);
-    float lowFreqFbm = 0.5f * (n.y * 0.625f + n.z * 0.25f + n.w * 0.125f) + 0.5f * (m.y * 0.625f + m.z * 0.25f + m.w * 0.125f);
+    vec3 largeUvw = largePos / (BASE_NOISE_LARGE_SCALE * frame.noiseScale.x) + vec3(0.21f, 0.53f, 0.87f);
+    vec4 m = textureLod(baseNoise, largeUvw, 0.0f);
+    vec3 warp = (m.yzw - vec3(0.5f)) * (BASE_NOISE_WARP * frame.noiseScale.x);
+    vec4 n = textureLod(baseNoise, (noisePos + warp) / frame.noiseScale.x, 0.0f);
+    vec3 fbmWeights = vec3(0.625f, 0.25f, 0.125f);
+    float lowFreqFbm = mix(dot(n.yzw, fbmWeights), dot(m.yzw, fbmWeights), BASE_SHAPE_LARGE_WEIGHT);
     return equalizeBaseShape(remapValue(n.x, lowFreqFbm - 1.0f, 1.0f, 0.0f, 1.0f));
 }
 
@@ -128,30 +140,28 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         vec3 shear = vec3(frame.layerShearM[k].xy * hf, 0.0f);
         vec3 noisePos = toNoiseFrame(-shear) + noiseRel + frame.layerNoiseOffsetM[k].xyz;
         // The base shape varies slowly with height: its lookup point slides down the local vertical
-        // toward the layer base by (1 - s) of the height, so that clouds are vertically coherent columns
-        // (coverage c shades about c of the ground) while the detail noise keeps full 3D variation.
-        // Written as a shift of p, so nothing cancels in float and the point stays world-fixed.
-        vec3 baseNoisePos = noisePos - toNoiseFrame(radial) * ((h - base) * (1.0f - BASE_NOISE_VERTICAL_SCALE));
-        float shape = baseShapeAt(baseNoisePos);
+        // toward the layer base by (1 - s) of the height (s per genus, baseNoiseVerticalScale), so that
+        // clouds are vertically coherent while the detail noise keeps full 3D variation. Written as a
+        // shift of p, so nothing cancels in float and the point stays world-fixed.
+        float verticalScale = baseNoiseVerticalScale(anvilSlab ? CLOUD_TYPE_CIRROSTRATUS : cloudType);
+        vec3 baseNoisePos = noisePos - toNoiseFrame(radial) * ((h - base) * (1.0f - verticalScale));
+        float shape = baseShapeAt(baseNoisePos, noisePos);
         float densityScale = genusDensityScale(cloudType);
         if (anvilSlab)
         {
-            // The anvil: a flat slab spreading downwind of the tower top, thinning at its edges.
-            shape *= smoothstep(0.0f, 0.3f, hf) * (1.0f - smoothstep(0.6f, 1.0f, hf));
+            // The anvil: a lens under the tropopause, flat on top, its underside rising toward the edge so
+            // it thins out there instead of ending in a wall (coverage falls off away from the tower).
+            shape *= anvilSlabProfile(hf, coverage);
+            // A sheet, not a field of puffs: the noise only breaks it up where it thins toward the edge.
+            coverage = saturate1(coverage * 1.8f);
             densityScale *= 0.8f;
         }
         else
         {
             shape *= cloudHeightProfile(cloudType, hf);
-            // Cumulus domes: the cloud narrows toward its top (the coverage threshold rises with height),
-            // so a vertically coherent column ends in a rounded top rather than a flat plateau.
-            if (cloudType == CLOUD_TYPE_CUMULUS)
-                coverage *= 1.0f - 0.6f * smoothstep(0.15f, 1.0f, hf);
+            coverage *= coverageHeightFactor(cloudType, hf);
             if (cloudType == CLOUD_TYPE_CUMULONIMBUS)
             {
-                // The tower narrows with height (towers are 5-10 km wide at mid level, the cell wider at
-                // the base); the anvil term then spreads the top again.
-                coverage *= 1.0f - 0.35f * smoothstep(0.3f, 0.75f, hf);
                 shape = anvilShape(shape, hf, range.z);
                 densityScale *= anvilDensity(hf) * 1.5f;
             }

@@ -33,7 +33,11 @@ float highCloudAlpha(vec3 p)
     }
     else
     {
-        // Cirrus: fibres stretched along the upper wind, bent by curl noise.
+        // Cirrus: fibres stretched along the upper wind, bent by curl noise. A lookup at 8 periods
+        // (192 km, wider than the shadow map) warps them first, so the bands across the wind do not
+        // come back every period in regular rows.
+        vec3 large = textureLod(baseNoise, q / (8.0f * period) + vec3(0.61f, 0.29f, 0.17f), 0.0f).yzw;
+        q += (large - vec3(0.5f)) * (0.6f * period);
         vec3 along = vec3(normalize(wind + vec2(1e-3f, 0.0f)), 0.0f);
         vec3 alongNoise = toNoiseFrame(along);
         float s0 = dot(q, alongNoise);

@@ -43,6 +43,41 @@ float cloudHeightProfile(int cloudType, float h)
     return saturate1(up * down);
 }
 
+// Vertical stretch of the base noise per genus (1 = isotropic, 0.35 = features ~3 times taller than
+// wide). Stretching makes clouds vertically coherent, but the noise's fine octaves stretch too and read
+// as vertical striations on every wall of a cumulus: there the domes of coverageHeightFactor give the
+// coherence instead and the noise stays nearly isotropic (bulging turrets). Stratiform decks keep the
+// stretch: their tops and bases come from the profile, and their edges stay put with height.
+float baseNoiseVerticalScale(int cloudType)
+{
+    if (cloudType == CLOUD_TYPE_CUMULUS || cloudType == CLOUD_TYPE_CUMULONIMBUS)
+        return 0.8f;
+    return 0.35f;
+}
+
+// Factor on the coverage with height (the coverage threshold rises): a vertically coherent column would
+// otherwise end in a flat plateau over vertical walls. Cumulus: only the cores of the cells reach the
+// upper part, so each cell is a dome over a flat base and cells of many heights stand side by side.
+// Cumulonimbus: the tower narrows with height (5-10 km wide at mid level, the cell wider at the base);
+// anvilShape then spreads the top again.
+float coverageHeightFactor(int cloudType, float h)
+{
+    if (cloudType == CLOUD_TYPE_CUMULUS)
+        return 1.0f - 0.8f * h * h;
+    if (cloudType == CLOUD_TYPE_CUMULONIMBUS)
+        return 1.0f - 0.35f * smoothstep(0.3f, 0.75f, h);
+    return 1.0f;
+}
+
+// Vertical profile of the anvil slab (the part spread downwind at the tropopause) at height fraction h,
+// where the slab's coverage is `coverage`: flat on top, the underside rising from 0.1 of the slab under
+// the tower to its top at the thin edge, so the anvil tapers instead of ending in a square wall.
+float anvilSlabProfile(float h, float coverage)
+{
+    float bottom = 1.0f - 0.9f * smoothstep(0.0f, 0.8f, coverage);
+    return smoothstep(bottom, min(bottom + 0.25f, 1.0f), h) * (1.0f - smoothstep(0.75f, 1.0f, h));
+}
+
 // Häggström's cumulonimbus shape: the coverage-shaped base value raised to an exponent that falls from
 // 1 to (1 - anvilAmount) between 65% and 95% of the height, so the top spreads into an anvil.
 float anvilShape(float shapeValue, float h, float anvilAmount)
@@ -59,8 +94,14 @@ float anvilDensity(float h)
     return bottom * top;
 }
 
-// The base shape remap(R, lowFreqFbm - 1, 1, 0, 1) of our 128^3 noise (lowFreqFbm half from the same
-// texel, half from an independent one: cloud_density.glsl) is close to normal with this mean and spread
+// Share of the low-frequency FBM that comes from the large-scale lookup (cloud_density.glsl), the rest
+// from the texel of R itself. It shifts the local cloud fraction over tens of kilometres: a share of 0.5
+// turned whole 20 km regions clear or overcast at a coverage of 0.4; 0.2 keeps the data's coverage
+// meaningful over a few kilometres while cells still cluster.
+SKY_CONST float BASE_SHAPE_LARGE_WEIGHT = 0.2f;
+
+// The base shape remap(R, lowFreqFbm - 1, 1, 0, 1) of our 128^3 noise (lowFreqFbm from the same texel
+// and, BASE_SHAPE_LARGE_WEIGHT of it, from an independent one) is close to normal with this mean and spread
 // (measured over the texture; tests/unit/test_cloud_math.cpp keeps them true). Mapping
 // it through the normal CDF (logistic approximation, Bowling et al. 2009: 1.702) makes it uniform in
 // [0,1], so that a coverage c leaves a cloud fraction of about c where the height profile is 1.

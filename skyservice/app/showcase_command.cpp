@@ -40,6 +40,7 @@ struct ShowcaseView
     const WeatherSnapshot* weather = nullptr; ///< nullptr: the built-in weather at the view's time
     std::string weatherSource = "builtin";
     uint32_t shadowMapSize = 0;              ///< > 0: also write the cloud shadow map (texels per side)
+    bool look = false;  ///< a look-sheet view (issue 22): half size, on look-sheet.png instead of the contact sheet
 };
 
 // Metres -> degrees of longitude at a latitude, for placing eyes relative to the built-in clouds.
@@ -80,6 +81,36 @@ std::vector<ShowcaseView> builtinViews()
                     {kBuiltinDeckLatDeg, kBuiltinDeckLonDeg + 1.0, 11000.0, 250.0, -8.0, 0.0}, 70.0,
                     "2026-06-21T09:30:00Z"),
     };
+}
+
+// The look sheet (issue 22): where pilots look at the built-in clouds, to judge their shapes at a glance.
+// Small (half the showcase size) so that `./sky run` stays quick on a CPU.
+std::vector<ShowcaseView> lookViews()
+{
+    const double cuLat = 44.3, cuLon = 7.5;  // inside the built-in cumulus field (client_demo's start)
+    const double cbLat = kBuiltinCumulonimbusLatDeg, cbLon = kBuiltinCumulonimbusLonDeg;
+    std::vector<ShowcaseView> views = {
+        builtinView("look-under-cumulus", "Under cumulus at noon: 500 m, pitch 10 deg, 44.3N 7.5E",
+                    {cuLat, cuLon, 500.0, 0.0, 10.0, 0.0}, 60.0, "2026-06-21T11:30:00Z"),
+        builtinView("look-among-cumulus", "Among cumulus at base level: 1500 m (the demo pose)",
+                    {cuLat, cuLon, 1500.0, 0.0, 0.0, 0.0}, 60.0, "2026-06-21T16:00:00Z"),
+        builtinView("look-cumulus-above", "Cumulus from above: 4000 m, sun behind",
+                    {cuLat, cuLon, 4000.0, 0.0, -15.0, 0.0}, 60.0, "2026-06-21T11:30:00Z"),
+        builtinView("look-cumulonimbus-20km", "Cumulonimbus and anvil from 20 km, 3600 m",
+                    {cbLat, cbLon - lonOffsetDeg(20000.0, cbLat), 3600.0, 90.0, 12.0, 0.0}, 70.0,
+                    "2026-06-21T15:00:00Z"),
+        builtinView("look-anvil-fl400", "The anvil from FL400, 30 km west of the tower",
+                    {cbLat, cbLon - lonOffsetDeg(30000.0, cbLat), 12200.0, 90.0, -12.0, 0.0}, 60.0,
+                    "2026-06-21T15:00:00Z"),
+        builtinView("look-sunset-cumulus", "Sunset behind cumulus: 800 m, towards the sun",
+                    {44.5, cuLon, 800.0, 302.0, 6.0, 0.0}, 60.0, "2026-06-21T18:55:00Z"),
+        builtinView("look-inside-stratus", "Inside the stratocumulus deck at 1300 m",
+                    {kBuiltinDeckLatDeg, kBuiltinDeckLonDeg, 1300.0, 45.0, 0.0, 0.0}, 60.0,
+                    "2026-06-21T10:00:00Z"),
+    };
+    for (ShowcaseView& v : views)
+        v.look = true;
+    return views;
 }
 
 #ifdef SKY_HAVE_INGEST
@@ -250,6 +281,8 @@ int runShowcaseCommand(const ShowcaseOptions& options)
     }
 
     std::vector<ShowcaseView> views = builtinViews();
+    for (ShowcaseView& v : lookViews())
+        views.push_back(std::move(v));
 #ifdef SKY_HAVE_INGEST
     std::unique_ptr<WeatherSnapshot> gfs;
     const std::string gfsPath = findGfsSample();
@@ -270,16 +303,16 @@ int runShowcaseCommand(const ShowcaseOptions& options)
         return kExitRuntime;
     SkyStatus status;
 
-    std::vector<ImageRgba8> tiles;
-    std::vector<std::string> captions;
+    std::vector<ImageRgba8> tiles, lookTiles;
+    std::vector<std::string> captions, lookCaptions;
     int code = kExitOk;
     for (const ShowcaseView& view : views)
     {
         ViewRequest request;
         request.pose = view.pose;
         request.fovYDeg = view.fovYDeg;
-        request.width = options.width;
-        request.height = options.height;
+        request.width = view.look ? std::max(options.width / 2, 8u) : options.width;
+        request.height = view.look ? std::max(options.height / 2, 8u) : options.height;
         request.unixTimeS = view.unixTimeS;
         // Some views also write the geo-referenced cloud shadow map (docs/model.md), 150 km wide.
         request.shadowMap = view.shadowMapSize > 0;
@@ -313,20 +346,25 @@ int runShowcaseCommand(const ShowcaseOptions& options)
         std::printf("%-20s %s  (sun %.1f deg, %.1f s wall)\n", view.name.c_str(), view.caption.c_str(),
                     result.sunElevationDeg, seconds);
         std::fflush(stdout);
-        tiles.push_back({result.width, result.height, result.displayRgba8});
-        captions.push_back(view.tileCaption);
+        (view.look ? lookTiles : tiles).push_back({result.width, result.height, result.displayRgba8});
+        (view.look ? lookCaptions : captions).push_back(view.tileCaption);
     }
-    if (code == kExitOk)
+    auto writeSheet = [&](const char* name, const std::vector<ImageRgba8>& sheetTiles,
+                          const std::vector<std::string>& sheetCaptions, uint32_t columns)
     {
-        ImageRgba8 sheet = makeContactSheet(tiles, captions, 2);
-        if (!writePng(options.outDir + "/contact-sheet.png", sheet, error))
+        if (code != kExitOk || sheetTiles.empty())
+            return;
+        ImageRgba8 sheet = makeContactSheet(sheetTiles, sheetCaptions, columns);
+        if (!writePng(options.outDir + "/" + name, sheet, error))
         {
             std::fprintf(stderr, "skyservice showcase: %s\n", error.c_str());
             code = kExitRuntime;
         }
         else
-            std::printf("wrote %s/contact-sheet.png\n", options.outDir.c_str());
-    }
+            std::printf("wrote %s/%s\n", options.outDir.c_str(), name);
+    };
+    writeSheet("contact-sheet.png", tiles, captions, 2);
+    writeSheet("look-sheet.png", lookTiles, lookCaptions, 3);
     if (options.common.validate && renderer.ctx.validationMessages.load() > 0)
         code = kExitRuntime;
     destroyRenderer(renderer);

@@ -30,19 +30,22 @@ bool divides(double period, double modulus)
 
 }  // namespace
 
-double noiseOffsetModulusM(const QualitySettings& q) { return 2.0 * q.highNoisePeriodM; }
+// 16 high-cloud periods (384 km by default): the large-scale lookups (24 base periods in
+// cloud_density.glsl, 8 high periods in high_cloud_alpha.glsl) are wider than the 150 km shadow map and
+// must still divide it; float offsets of a few hundred kilometres keep ~0.03 m resolution.
+double noiseOffsetModulusM(const QualitySettings& q) { return 16.0 * q.highNoisePeriodM; }
 
 bool validateNoisePeriods(const QualitySettings& q, std::string& error)
 {
     double m = noiseOffsetModulusM(q);
-    // The high-cloud shader also uses 1/8 and 1/2 of its period.
-    // The base noise is also read at 3x its period (cloud_density.glsl).
-    for (double p : {q.baseNoisePeriodM, 3.0 * q.baseNoisePeriodM, q.detailNoisePeriodM, q.curlNoisePeriodM,
+    // The high-cloud shader also uses 1/8, 1/2 and 8x its period.
+    // The base noise is also read at 24x its period (cloud_density.glsl).
+    for (double p : {q.baseNoisePeriodM, 24.0 * q.baseNoisePeriodM, q.detailNoisePeriodM, q.curlNoisePeriodM,
                      q.highNoisePeriodM / 8.0})
         if (!divides(p, m))
         {
             error = "noise period " + std::to_string(p) + " m does not divide " + std::to_string(m) +
-                    " m (twice the high-cloud period): clouds would jump when the offsets wrap";
+                    " m (16 high-cloud periods): clouds would jump when the offsets wrap";
             return false;
         }
     return true;

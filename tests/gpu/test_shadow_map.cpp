@@ -182,10 +182,15 @@ void ShadowMap::checkCellShadow(double eyeLatDeg, double eyeLonDeg, double cellL
                 el, az, shiftM, errM, tolM, alongM, glm::length(centroid - cellPlane - alongM * away));
     EXPECT_LT(errM, tolM);
 
+    // Lit beyond the cell's radius plus a margin that covers the shadow's smear along the sun: a cell
+    // from base to top casts a shadow (top - base) / tan(el) long, whose ends lie half of that beyond
+    // the radius from the mid-height shadow (5.5 km at 11 degrees, where 2 km was marginal).
+    const double smearM = 0.5 * double(topM - baseM) / std::tan(el * M_PI / 180.0);
+    const double farM = radiusM + std::max(2000.0, smearM + g.texelSizeM());
     uint32_t litFar = 0, farTexels = 0;
     for (uint32_t j = 0; j < kMapSize; ++j)
         for (uint32_t i = 0; i < kMapSize; ++i)
-            if (glm::length(g.planePositionM(i + 0.5, j + 0.5) - expected) > radiusM + 2000.0)
+            if (glm::length(g.planePositionM(i + 0.5, j + 0.5) - expected) > farM)
             {
                 ++farTexels;
                 litFar += r.shadowTransmittance[size_t(j) * kMapSize + i] > 0.999f ? 1u : 0u;

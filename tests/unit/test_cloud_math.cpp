@@ -185,8 +185,8 @@ TEST(CloudMath, EnergyConservingIntegrationIsSplitInvariant)
 }
 
 // The coverage mapping assumes the base shape's distribution (BASE_SHAPE_MEAN, BASE_SHAPE_SD in
-// cloud_shape.glsl): recompute it from the noise recipe, as cloud_density.glsl combines it (R and half
-// of the low-frequency FBM from one texel, the other half from an independent one), 8-bit quantised.
+// cloud_shape.glsl): recompute it from the noise recipe, as cloud_density.glsl combines it (R and most
+// of the low-frequency FBM from one texel, BASE_SHAPE_LARGE_WEIGHT from an independent one), 8-bit quantised.
 TEST(CloudMath, BaseShapeStatisticsMatchTheEqualisationConstants)
 {
     std::mt19937 rng(3);
@@ -200,7 +200,8 @@ TEST(CloudMath, BaseShapeStatisticsMatchTheEqualisationConstants)
         glm::vec4 b = glsl::baseNoiseTexel(glm::uvec3(texel(rng), texel(rng), texel(rng)), BASE_NOISE_SIZE, 1u);
         a = glm::round(a * 255.0f) / 255.0f;
         b = glm::round(b * 255.0f) / 255.0f;
-        float low = 0.5f * (a.y * 0.625f + a.z * 0.25f + a.w * 0.125f) + 0.5f * (b.y * 0.625f + b.z * 0.25f + b.w * 0.125f);
+        float low = glm::mix(a.y * 0.625f + a.z * 0.25f + a.w * 0.125f, b.y * 0.625f + b.z * 0.25f + b.w * 0.125f,
+                             glsl::BASE_SHAPE_LARGE_WEIGHT);
         float shape = glsl::remapValue(a.x, low - 1.0f, 1.0f, 0.0f, 1.0f);
         sum += double(shape);
         sumSq += double(shape) * double(shape);
@@ -297,4 +298,25 @@ TEST(CloudHistory, PacksRadianceAlphaAndDepthWithinTheStatedPrecision)
     EXPECT_EQ(big, glm::vec4(glsl::kHistoryMaxRadiance, 0.0f, 0.0f, 1.0f));
     EXPECT_NEAR(d, glsl::kHistoryMaxDepthM, 0.001f * glsl::kHistoryMaxDepthM);
     EXPECT_EQ(glsl::unpackCloudHistory(glsl::packCloudHistory(glm::vec4(0.0f), 0.0f), d), glm::vec4(0.0f));
+}
+
+// Cumulus domes (issue 22): the coverage threshold rises with height, so the cloud narrows toward its
+// top instead of standing as a column with vertical walls; other stratiform genera keep theirs.
+TEST(CloudMath, CumulusNarrowsWithHeightAndTheAnvilThinsTowardItsEdge)
+{
+    float previous = 2.0f;
+    for (float h = 0.0f; h <= 1.0f; h += 0.1f)
+    {
+        const float f = glsl::coverageHeightFactor(CLOUD_TYPE_CUMULUS, h);
+        EXPECT_LE(f, previous) << h;
+        EXPECT_GE(f, 0.0f);
+        previous = f;
+    }
+    EXPECT_LT(glsl::coverageHeightFactor(CLOUD_TYPE_CUMULUS, 0.8f), 0.5f);
+    EXPECT_EQ(glsl::coverageHeightFactor(CLOUD_TYPE_STRATUS, 0.8f), 1.0f);
+    // The anvil slab: thick where its coverage is high, nothing below its upper part at a thin edge.
+    EXPECT_GT(glsl::anvilSlabProfile(0.4f, 1.0f), 0.9f);
+    EXPECT_EQ(glsl::anvilSlabProfile(0.4f, 0.3f), 0.0f);
+    EXPECT_GT(glsl::anvilSlabProfile(0.85f, 0.3f), 0.2f);
+    EXPECT_EQ(glsl::anvilSlabProfile(1.0f, 1.0f), 0.0f);  // flat top
 }
