@@ -143,8 +143,15 @@ float lightConeOpticalDepth(LightCone c)
 
 // Light scattered toward the eye per unit incident radiance: multiple-scattering octaves (Wrenninge
 // 2013, Hillaire 2016) of a two-lobe phase function, with Beer-powder darkening seen away from the light.
+// The octaves beyond the last carry the rest of the geometric series, b^N / (1 - b) of the energy, as one
+// diffuse term: isotropic phase, attenuated not exponentially but as light diffusing through a
+// conservative cloud, 1 / (1 + k tau) (the two-stream transmission, k = 0.75 (1 - g) ~ 0.1 for cloud
+// droplets: kDiffusionPerOpticalDepth). Without it a few octaves lose most of the light that a thick cloud
+// scatters many times: sunlit faces came out 2-3x darker than the path-traced reference, and the light
+// deep in a cumulus fell to nothing (exp(-tau a^N)) where the reference keeps a few per cent.
 // The powder factor E(d)/e^-d = 2 (1 - e^-2d) is taken on the local optical depth over ~100 m (as Nubis
 // does with the sample density), so thin wisps and crevices darken while sunlit faces do not.
+const float kDiffusionPerOpticalDepth = 0.2f;
 float multipleScattering(float opticalDepth, float cosTheta, float localOpticalDepth)
 {
     float a = 1.0f;
@@ -160,16 +167,26 @@ float multipleScattering(float opticalDepth, float cosTheta, float localOpticalD
         b *= frame.lightingTerms.y;
         c *= frame.lightingTerms.z;
     }
+    sum += b / max(1.0f - frame.lightingTerms.y, 0.05f) * (0.25f / 3.14159265f) /
+           (1.0f + kDiffusionPerOpticalDepth * opticalDepth);
     float powder = 0.5f * beerPowder(localOpticalDepth) / max(exp(-localOpticalDepth), 1e-6f);
     float powderWeight = frame.lightingTerms.w * saturate1(0.5f - 0.5f * cosTheta);
     return sum * mix(1.0f, powder, powderWeight);
 }
 
-// Ambient light: sky above (brighter toward the top of the cloud) and ground bounce below.
+// Ambient light: sky above (brighter toward the top of the cloud) and ground bounce below. Low in a thick
+// cloud the sky is seen only through the cloud above (kSkyAmbientAtBase of it at the base). The ground
+// sends E albedo / pi up, over the lower half of the sphere only, from ground that is largely in the
+// shadow of the cloud above it (kGroundBounceShare: half a sphere, ~1/3 lit). With the earlier 0.35 and
+// 1 the undersides of a cumulus seen from below were as bright as its sunlit towers; the path-traced
+// reference has them at ~0.2 of the towers.
+const float kSkyAmbientAtBase = 0.05f;
+const float kGroundBounceShare = 0.15f;
 vec3 ambientLight(float heightFraction)
 {
-    vec3 sky = frame.ambientSky.rgb * mix(0.35f, 1.0f, heightFraction);
-    vec3 ground = frame.ambientGround.rgb * (frame.ambientSky.w / 3.14159265f) * (1.0f - heightFraction);
+    vec3 sky = frame.ambientSky.rgb * mix(kSkyAmbientAtBase, 1.0f, heightFraction);
+    vec3 ground = frame.ambientGround.rgb * (kGroundBounceShare * frame.ambientSky.w / 3.14159265f) *
+                  (1.0f - heightFraction);
     return frame.cloudLook.z * (sky + ground);
 }
 
