@@ -170,8 +170,9 @@ float lightConeDiffusionDepth(LightCone c)
 // The octaves beyond the last carry the rest of the geometric series, b^N / (1 - b) of the energy, as one
 // diffuse term: isotropic phase, attenuated not exponentially but as light diffusing through a
 // conservative cloud (diffusionFactor of `diffusionDepth`, light_cone.glsl). Without it a few octaves lose
-// most of the light that a thick cloud scatters many times: sunlit faces came out 2-3x darker than the path-traced reference, and the light
-// deep in a cumulus fell to nothing (exp(-tau a^N)) where the reference keeps a few per cent.
+// most of the light that a thick cloud scatters many times: sunlit faces came out 2-3x darker than the
+// path-traced reference, and the light deep in a cumulus fell to nothing (exp(-tau a^N)) where the
+// reference keeps a few per cent.
 // The powder factor E(d)/e^-d = 2 (1 - e^-2d) is taken on the local optical depth over ~100 m (as Nubis
 // does with the sample density), so thin wisps and crevices darken while sunlit faces do not.
 float multipleScattering(float opticalDepth, float diffusionDepth, float cosTheta, float localOpticalDepth)
