@@ -92,8 +92,9 @@ std::vector<ShowcaseView> lookViews()
     std::vector<ShowcaseView> views = {
         builtinView("look-under-cumulus", "Under cumulus at noon: 500 m, pitch 10 deg, 44.3N 7.5E",
                     {cuLat, cuLon, 500.0, 0.0, 10.0, 0.0}, 60.0, "2026-06-21T11:30:00Z"),
-        builtinView("look-among-cumulus", "Among cumulus at base level: 1500 m (the demo pose)",
-                    {cuLat, cuLon, 1500.0, 0.0, 0.0, 0.0}, 60.0, "2026-06-21T16:00:00Z"),
+        // 1.6 km east of client_demo's start: with the domed cumulus its start at 1500 m is inside a cloud.
+        builtinView("look-among-cumulus", "Among cumulus at base level: 1500 m, in a gap",
+                    {cuLat, cuLon + 0.02, 1500.0, 0.0, 0.0, 0.0}, 60.0, "2026-06-21T16:00:00Z"),
         builtinView("look-cumulus-above", "Cumulus from above: 4000 m, sun behind",
                     {cuLat, cuLon, 4000.0, 0.0, -15.0, 0.0}, 60.0, "2026-06-21T11:30:00Z"),
         builtinView("look-cumulonimbus-20km", "Cumulonimbus and anvil from 20 km, 3600 m",
