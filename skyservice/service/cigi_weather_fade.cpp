@@ -183,25 +183,40 @@ bool CigiWeatherFade::fading(double nowS) const
                        });
 }
 
+namespace
+{
+
+/// Calls apply(region, weight) for each region drawn at the point at nowS, in id order; weight is the
+/// region's weight there (its perimeter's blend) times its presence (fading in or out), > 0.
+template <class Apply>
+void forEachRegionAt(const std::map<uint16_t, CigiFadingRegion>& regions, double latDeg, double lonDeg, double nowS,
+                     Apply apply)
+{
+    for (const auto& [id, r] : regions)
+    {
+        const float presence = r.presence.at(nowS);
+        if (presence <= 0)
+            continue;
+        const double w = cigiRegionWeight(r.shape, latDeg, lonDeg);
+        if (w > 0)
+            apply(r, float(w) * presence);
+    }
+}
+
+} // namespace
+
 CigiCloudsAt CigiWeatherFade::cloudsAt(double latDeg, double lonDeg, double nowS) const
 {
     CigiCloudsAt out;
     for (uint8_t i = 0; i < 3; ++i)
         out[i] = drawn(global_[i], unset(uint8_t(i + 1)), 1.0f, nowS);
     bool covered = false; // an earlier region reaches this point
-    for (const auto& [id, r] : regions_)
-    {
-        const float presence = r.presence.at(nowS);
-        if (presence <= 0)
-            continue;
-        const double w = cigiRegionWeight(r.shape, latDeg, lonDeg);
-        if (w <= 0)
-            continue;
-        const float t = float(w) * presence * (r.shape.mergeWeather && covered ? 0.5f : 1.0f);
+    forEachRegionAt(regions_, latDeg, lonDeg, nowS, [&](const CigiFadingRegion& r, float weight) {
+        const float t = weight * (r.shape.mergeWeather && covered ? 0.5f : 1.0f);
         for (size_t i = 0; i < 3; ++i)
             out[i] = drawn(r.layers[i], out[i], t, nowS);
         covered = true;
-    }
+    });
     return out;
 }
 
@@ -211,19 +226,12 @@ CigiCloudsAt CigiWeatherFade::cloudsOver(const CigiCloudsAt& under, double latDe
     CigiCloudsAt out;
     for (uint8_t i = 0; i < 3; ++i)
         out[i] = drawn(global_[i], under[i], 1.0f, nowS, true, undulationM);
-    for (const auto& [id, r] : regions_)
-    {
-        const float presence = r.presence.at(nowS);
-        if (presence <= 0)
-            continue;
-        const double w = cigiRegionWeight(r.shape, latDeg, lonDeg);
-        if (w <= 0)
-            continue;
+    forEachRegionAt(regions_, latDeg, lonDeg, nowS, [&](const CigiFadingRegion& r, float weight) {
         // The gridded weather is always beneath: Merge Weather averages with it (or with what is over it).
-        const float t = float(w) * presence * (r.shape.mergeWeather ? 0.5f : 1.0f);
+        const float t = weight * (r.shape.mergeWeather ? 0.5f : 1.0f);
         for (size_t i = 0; i < 3; ++i)
             out[i] = drawn(r.layers[i], out[i], t, nowS, false, undulationM);
-    }
+    });
     return out;
 }
 
