@@ -263,7 +263,8 @@ void main()
         float depthM;
         float frontM = 0.0f;
         ivec2 freshTexel = block;
-        if (pixel == block * B + phase || newColumnTexel(pixel, B, freshTexel))
+        // newColumnCount() is the same for the whole dispatch: without a turn its integer divisions are skipped.
+        if (pixel == block * B + phase || (newColumnCount() != 0u && newColumnTexel(pixel, B, freshTexel)))
         {
             cloud = imageLoad(freshCloud, freshTexel);
             depthM = imageLoad(freshDepth, freshTexel).x;

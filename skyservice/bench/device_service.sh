@@ -14,7 +14,8 @@
 # "1080p 1080p-layers 1080p-layers-vulkan 1080p-shadow 4k 640 rate1000 sky-bench baseline"; "before" runs
 # 1080p shm with an earlier tree prepared with `prepare-before REV`, the frame path before a change, in the same
 # call; "before-both" its shm and Vulkan transports, "before-shadow" with a 1024² shadow map, "sky-bench-before"
-# the renderer alone with the earlier tree), SKY_SVC_FRAMES (timed frames per scene, size and
+# the renderer alone with the earlier tree; "sky-bench@NAME" the renderer with the SPIR-V in .gpu/spirv-NAME,
+# for shader-only variants built here), SKY_SVC_FRAMES (timed frames per scene, size and
 # transport; default 300), SKY_SVC_SCENES (default all), SKY_SVC_LIMIT_S (each run's time limit, default
 # 150 s), SKY_SVC_BUILD=0 (reuse /tmp/build from an earlier call on the same warm machine). A device call
 # lasts at most 10 minutes: with a slow frame path, lower SKY_SVC_FRAMES or split SKY_SVC_RUNS over calls.
@@ -134,6 +135,8 @@ for run in ${SKY_SVC_RUNS:-1080p 1080p-layers 1080p-layers-vulkan 1080p-shadow 4
       skyBench "" $BENCH "$SKY_SPIRV_DIR" ;;
     sky-bench-before)  # the same with the earlier tree (a change's cost on the renderer, in the same call)
       skyBench "-before" /tmp/build-before/skyservice/sky-bench "$G/before/spirv" ;;
+    sky-bench@*)  # the current renderer with the shaders of .gpu/spirv-NAME (a shader-only variant, same call)
+      skyBench "-${run#sky-bench@}" $BENCH "$G/spirv-${run#sky-bench@}" ;;
     baseline)  # GPU.md's yardstick at the same size, in the same call
       if timeout 60 cmake -S $G/baseline -B /tmp/bb -DCMAKE_BUILD_TYPE=Release \
            -DCLOUDPROBE_SPV=$G/baseline/cloud.comp.spv -DVulkan_INCLUDE_DIR=$G/include \
