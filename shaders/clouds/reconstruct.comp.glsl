@@ -68,19 +68,46 @@ vec4 historyCloud(ivec2 p)
     return unpackCloudHistory(imageLoad(historyIn, p), depthM);
 }
 
-// Bilinear read of the previous cloud image at pixel coordinates `q` (premultiplied colour and alpha
-// interpolate correctly); a nearest read would shift every reprojected pixel by up to half a pixel.
-vec4 bilinearHistory(vec2 q)
+// Read of the previous cloud image at pixel coordinates `q` (premultiplied colour and alpha interpolate
+// correctly). Catmull-Rom, not bilinear: a pixel lives on in the history for up to B x B frames and is
+// resampled in each of them; bilinear weights blur it every time, and in a 60 deg/s turn the display lost
+// ~30 % of its detail against a full render (tests/gpu/test_flight_path.cpp, sharpness.h), which the
+// cubic's negative lobes keep. Its overshoot is cut at 0 and at alpha 1; the colour clamp against the
+// fresh neighbourhood follows. Where the four nearest texels hold no cloud the result is 0 whatever the
+// outer ones hold (their weights are never positive), so clear sky reads four texels, not sixteen.
+vec4 cubicHistory(vec2 q)
 {
     vec2 t = q - 0.5f;
-    ivec2 i0 = ivec2(floor(t));
-    vec2 f = t - vec2(i0);
+    ivec2 i1 = ivec2(floor(t));
+    vec2 f = t - vec2(i1);
     ivec2 top = ivec2(frame.image.xy) - 1;
-    vec4 c00 = historyCloud(clamp(i0, ivec2(0), top));
-    vec4 c10 = historyCloud(clamp(i0 + ivec2(1, 0), ivec2(0), top));
-    vec4 c01 = historyCloud(clamp(i0 + ivec2(0, 1), ivec2(0), top));
-    vec4 c11 = historyCloud(clamp(i0 + ivec2(1, 1), ivec2(0), top));
-    return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+    vec4 c11 = historyCloud(clamp(i1, ivec2(0), top));
+    vec4 c21 = historyCloud(clamp(i1 + ivec2(1, 0), ivec2(0), top));
+    vec4 c12 = historyCloud(clamp(i1 + ivec2(0, 1), ivec2(0), top));
+    vec4 c22 = historyCloud(clamp(i1 + ivec2(1, 1), ivec2(0), top));
+    if (max(max(c11.w, c21.w), max(c12.w, c22.w)) <= 0.0f)
+        return vec4(0.0f);
+    // Catmull-Rom weights of the taps at -1, 0, 1, 2 for the fractions f.x and f.y.
+    vec2 f2 = f * f, f3 = f2 * f;
+    vec2 w0 = 0.5f * (-f3 + 2.0f * f2 - f);
+    vec2 w1 = 0.5f * (3.0f * f3 - 5.0f * f2 + 2.0f);
+    vec2 w2 = 0.5f * (-3.0f * f3 + 4.0f * f2 + f);
+    vec2 w3 = 0.5f * (f3 - f2);
+    vec4 sum = w1.y * (w1.x * c11 + w2.x * c21) + w2.y * (w1.x * c12 + w2.x * c22);
+    // The outer ring: rows -1 and 2 whole, columns -1 and 2 of rows 0 and 1.
+    float wx[4] = float[4](w0.x, w1.x, w2.x, w3.x);
+    for (int k = 0; k < 4; ++k)
+    {
+        sum += w0.y * wx[k] * historyCloud(clamp(i1 + ivec2(k - 1, -1), ivec2(0), top));
+        sum += w3.y * wx[k] * historyCloud(clamp(i1 + ivec2(k - 1, 2), ivec2(0), top));
+    }
+    for (int k = 0; k < 2; ++k)
+    {
+        float wy = k == 0 ? w1.y : w2.y;
+        sum += w0.x * wy * historyCloud(clamp(i1 + ivec2(-1, k), ivec2(0), top));
+        sum += w3.x * wy * historyCloud(clamp(i1 + ivec2(2, k), ivec2(0), top));
+    }
+    return vec4(max(sum.xyz, vec3(0.0f)), clamp(sum.w, 0.0f, 1.0f));
 }
 
 // Fresh pixels per row and column: they sit B pixels apart, at b * B + phase, inside the image.
@@ -210,7 +237,7 @@ vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
         // Its history is the texel just read (q lies within kStillPx of this pixel's centre).
         bool still = distance(q, vec2(pixel) + 0.5f) < kStillPx;
         float unusedDepthM;
-        previous = still ? unpackCloudHistory(previousTexel, unusedDepthM) : bilinearHistory(q);
+        previous = still ? unpackCloudHistory(previousTexel, unusedDepthM) : cubicHistory(q);
         // Disocclusion: the fixed point did not settle: the refined depth, seen from the previous eye,
         // disagrees with the previous depth found there (the ray crossed a cloud edge of another distance).
         if (previousDepth > 0.0f && depthGuess > 0.0f)

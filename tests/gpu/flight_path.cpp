@@ -3,6 +3,7 @@
 
 #include "tests/gpu/image_compare.h"
 #include "tests/gpu/scenes.h"
+#include "tests/gpu/sharpness.h"
 
 #include <gtest/gtest.h>
 
@@ -63,16 +64,20 @@ FlightStats flySegment(Renderer& r, ViewRequest& view, const Motion& motion, int
         bool dropped = !lastHistoryDropReason(r).empty();
         reference = renderChecked(r, view, full);
         double pc = psnrCloud(frame, reference), pd = psnrDisplay(frame, reference);
-        double edgeDb = 1e9, edgeAbs = 0.0;
+        double edgeDb = 1e9, edgeAbs = 0.0, edgeSharpness = 1e9;
         for (ColumnBand b : edges)
         {
             edgeDb = std::min(edgeDb, psnrCloud(frame, reference, b));
             edgeAbs = std::max(edgeAbs, meanAbsCloudError(frame, reference, b));
+            edgeSharpness = std::min(edgeSharpness, sharpnessRatio(frame, reference, b));
         }
+        const double sharpness = sharpnessRatio(frame, reference);
         double self = k > 0 ? psnrResampled(resampleCloud(previousReference, previousView, view), reference) : 0.0;
         std::printf("%s frame %d: alt %.0f m, block %u, cloud PSNR %.1f dB, display %.1f dB, edge cloud %.1f dB "
-                    "(mean abs %.4f), reference vs previous %.1f dB%s\n",
-                    name.c_str(), k + 1, view.pose.altitudeM, frame.marchBlockPx, pc, pd, edgeDb, edgeAbs, self,
+                    "(mean abs %.4f), sharpness %.3f (edge %.3f) of the full render's, reference vs previous "
+                    "%.1f dB%s\n",
+                    name.c_str(), k + 1, view.pose.altitudeM, frame.marchBlockPx, pc, pd, edgeDb, edgeAbs, sharpness,
+                    edgeSharpness, self,
                     dropped ? (", history dropped: " + lastHistoryDropReason(r)).c_str() : "");
         if (k > 0)
             stats.worstReferenceDb = std::min(stats.worstReferenceDb, self);
@@ -89,6 +94,8 @@ FlightStats flySegment(Renderer& r, ViewRequest& view, const Motion& motion, int
         stats.worstDisplayDb = std::min(stats.worstDisplayDb, pd);
         stats.worstEdgeCloudDb = std::min(stats.worstEdgeCloudDb, edgeDb);
         stats.worstEdgeMeanAbs = std::max(stats.worstEdgeMeanAbs, edgeAbs);
+        stats.lowestSharpness = std::min(stats.lowestSharpness, sharpness);
+        stats.lowestEdgeSharpness = std::min(stats.lowestEdgeSharpness, edgeSharpness);
         stats.historyDrops += dropped ? 1 : 0;
         ++stats.frames;
     }

@@ -31,6 +31,8 @@ struct FlightStats
     double worstEdgeMeanAbs = 0;      ///< highest mean absolute cloud error in those bands (share of the peak)
     double worstEdgeDeficitDb = -1e9; ///< largest (whole-frame cloud PSNR - edge-band cloud PSNR) of a frame
     double worstReferenceDb = 1e9;    ///< lowest PSNR of a reference against the previous one resampled to it
+    double lowestSharpness = 1e9;     ///< lowest display sharpness ratio to the full render (sharpness.h)
+    double lowestEdgeSharpness = 1e9; ///< the same in the edge bands
     int historyDrops = 0;             ///< measured frames that did not use history
     int frames = 0;
     uint32_t lastBlockPx = 0;         ///< march block of the last frame (RenderResult::marchBlockPx)
