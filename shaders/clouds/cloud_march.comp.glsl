@@ -60,7 +60,7 @@ shared uint groupLookups;
 #include "shaders/clouds/cloud_lighting.glsl"
 #include "shaders/clouds/high_cloud.glsl"
 #include "shaders/clouds/view_ray.glsl"
-#include "shaders/lib/new_columns.glsl"
+#include "shaders/lib/new_lines.glsl"
 
 // Marches the ray of `pixel` and stores it at `texel`; returns its density lookups.
 uint marchPixel(ivec2 pixel, ivec2 texel)
@@ -113,18 +113,19 @@ void main()
         groupLookups = 0u;
     barrier();
     // Reprojected frames (frame.reprojection.x = B: 4, or 2 or 1 near clouds) march one pixel of each
-    // BxB block and store it at the block's texel of a block-resolution image (and, in a turn, every
-    // pixel of the columns the previous frame did not see, beside them); full-resolution frames
-    // march every pixel. The dispatch's workgroup rows run in the order the host chose (march_order.h).
+    // BxB block and store it at the block's texel of a block-resolution image (and, in a turn or a pitch
+    // change, every pixel of the columns or rows the previous frame did not see, beside and below them);
+    // full-resolution frames march every pixel. The dispatch's workgroup rows run in the order the host
+    // chose (march_order.h).
     uint block = max(frame.reprojection.x, 1u);
-    uint rows = (frame.image.y + block - 1u) / block;
+    uint rows = (frame.image.y + block - 1u) / block + (block > 1u ? newRowCount() * block : 0u);
     uint groupRows = (rows + gl_WorkGroupSize.y - 1u) / gl_WorkGroupSize.y;
     uint groupRow = min(marchOrder.rowOrder[min(gl_WorkGroupID.y, MARCH_ORDER_MAX_ROWS - 1u)], groupRows - 1u);
     uvec2 id = uvec2(gl_GlobalInvocationID.x, groupRow * gl_WorkGroupSize.y + gl_LocalInvocationID.y);
     ivec2 pixel = ivec2(id * block + uvec2(frame.reprojection.y, frame.reprojection.z));
-    // After the blocks of a row: the pixels of the columns marched in full (new_columns.glsl).
-    if (block > 1u && int(id.x) >= newColumnsTexelX0(int(block)))
-        pixel = newColumnPixel(ivec2(id), int(block));
+    // Beside and below the blocks: the pixels of the lines marched in full (new_lines.glsl).
+    if (block > 1u && (int(id.x) >= newColumnsTexelX0(int(block)) || int(id.y) >= newRowsTexelY0(int(block))))
+        pixel = newLinePixel(ivec2(id), int(block));
     if (pixel.x >= 0 && pixel.x < int(frame.image.x) && pixel.y < int(frame.image.y))
     {
         uint lookups = marchPixel(pixel, ivec2(id));

@@ -3,10 +3,10 @@
 //
 // The march marched one pixel of every BxB block this frame (B = frame.reprojection.x: 4, or 2 and 1
 // near and inside a cloud layer; position frame.reprojection.yz in the block) into a block-resolution
-// image; in a turn, it also marched every pixel of the columns the previous frame did not see
-// (shaders/lib/new_columns.glsl), taken as is too. Every other pixel is either its block's fresh pixel,
-// taken as is, or the previous frame's cloud image reprojected: the pixel's ray is followed to the
-// cloud depth of its nearest fresh pixel (or to infinity where that ray saw no cloud), the point is
+// image; in a turn or a pitch change, it also marched every pixel of the columns or rows the previous
+// frame did not see (shaders/lib/new_lines.glsl), taken as is too. Every other pixel is either its
+// block's fresh pixel, taken as is, or the previous frame's cloud image reprojected: the pixel's ray is
+// followed to the cloud depth of its nearest fresh pixel (or to infinity where that ray saw no cloud), the point is
 // projected into the previous camera (axes and eye given relative to the current eye, computed in
 // double on the CPU), and the previous image is read there. History is rejected when that lands off
 // screen, when the previous depth there disagrees with the expected one (disocclusion), or when it
@@ -44,7 +44,7 @@ layout(binding = 6, r32f) uniform readonly image2D frontHistoryIn;
 layout(binding = 7, r32f) uniform writeonly image2D frontHistoryOut;
 
 #include "shaders/clouds/view_ray.glsl"
-#include "shaders/lib/new_columns.glsl"
+#include "shaders/lib/new_lines.glsl"
 
 // Relative tolerance on the previous depth before a pixel counts as disoccluded (our choice: the
 // transmittance-weighted depth of a cumulus moves by less than 10% between neighbouring rays), and
@@ -290,8 +290,9 @@ void main()
         float depthM;
         float frontM = 0.0f;
         ivec2 freshTexel = block;
-        // newColumnCount() is the same for the whole dispatch: without a turn its integer divisions are skipped.
-        if (pixel == block * B + phase || (newColumnCount() != 0u && newColumnTexel(pixel, B, freshTexel)))
+        // The line counts are the same for the whole dispatch: without a turn the integer divisions are skipped.
+        if (pixel == block * B + phase ||
+            (newColumnCount() + newRowCount() != 0u && newLineTexel(pixel, B, freshTexel)))
         {
             cloud = imageLoad(freshCloud, freshTexel);
             depthM = imageLoad(freshDepth, freshTexel).x;

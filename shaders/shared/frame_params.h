@@ -55,8 +55,11 @@ struct FrameParams
     // (then not unit; skyservice/render/reprojection.cpp).
     vec4 previousRight;     // xyz: previous camera right axis; w: its half image width in tangent units
     vec4 previousUp;        // xyz: previous camera up axis; w: its half image height in tangent units
-    vec4 previousForward;   // xyz: previous camera unit view axis; w: first column marched in full (new_columns.glsl)
-    vec4 previousEye;       // xyz: previous eye position relative to the current eye (m); w: how many such columns
+    vec4 previousForward;   // xyz: previous camera unit view axis; w: unused
+    vec4 previousEye;       // xyz: previous eye position relative to the current eye (m); w: unused
+    // The lines the previous frame did not see, marched in full (shaders/lib/new_lines.glsl): x: first
+    // column, y: how many columns (0: none); z: first row, w: how many rows.
+    uvec4 newLines;
     // The weather window is centred on a lattice node near the eye, not on the eye
     // (skyservice/earth/window_lattice.h): window-plane position = windowOffsetM.xy + the map position
     // (m east, north of the eye) through windowAxes.

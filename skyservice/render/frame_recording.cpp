@@ -73,11 +73,11 @@ void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, c
     vkCmdResetQueryPool(cmd, frame.timestamps, 0, kTsCount);
     // Reprojected: one invocation per block (4x4, or finer near clouds) into the fresh images.
     const uint32_t block = reprojected ? r.reconstruct.reprojection.block.blockPx : 1u;
-    // And, after the blocks of each block row, one invocation per pixel of the columns the previous frame
-    // did not see (reprojection.h NewColumns): B per column.
-    const uint32_t newColumns = reprojected ? r.reconstruct.reprojection.newColumns.count : 0u;
-    const uint32_t marchX = (request.width + block - 1) / block + newColumns * block;
-    const uint32_t marchY = (request.height + block - 1) / block;
+    // And, beside the blocks of each block row (below those of each block column), one invocation per
+    // pixel of the columns (rows) the previous frame did not see (reprojection.h NewLines): B per line.
+    const NewLines none, &lines = reprojected ? r.reconstruct.reprojection.newLines : none;
+    const uint32_t marchX = (request.width + block - 1) / block + lines.columns.count * block;
+    const uint32_t marchY = (request.height + block - 1) / block + lines.rows.count * block;
     // The order of the march's workgroup rows (march_order.h), uploaded first: its barrier then waits
     // for nothing.
     const uint32_t marchGroupRows = (marchY + WORKGROUP_SIZE_2D - 1) / WORKGROUP_SIZE_2D;

@@ -142,8 +142,8 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
         std::string why;
         const bool useHistory = historyUsable(r.reconstruct.reprojection, request, v.camera, why);
         r.reconstruct.reprojection.lastDropReason = useHistory ? "" : why;
-        r.reconstruct.reprojection.newColumns =
-            useHistory ? findNewColumns(r.reconstruct.reprojection, request, v.camera) : NewColumns{};
+        r.reconstruct.reprojection.newLines =
+            useHistory ? findNewLines(r.reconstruct.reprojection, request, v.camera) : NewLines{};
         fillReprojectionParams(v.params, r.reconstruct.reprojection, request, v.camera, useHistory);
     }
     placeLightVolume(quality, r.tuning, v.params);  // after the march block is known: it counts the rays

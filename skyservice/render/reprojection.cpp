@@ -144,9 +144,32 @@ PreviousAxes previousAxes(const ReprojectionHistory& history, const ViewTangents
 
 }  // namespace
 
-NewColumns findNewColumns(const ReprojectionHistory& history, const ViewRequest& view, const CameraFrame& camera)
+namespace
 {
-    NewColumns none;
+
+// The band of lines at the border of an image `size` lines long that `seen` (a line number -> whether
+// the previous frame saw it) says are new: from the side with more of them, at most maxNewLines.
+template <typename Seen>
+LineBand newBand(uint32_t size, Seen seen)
+{
+    const uint32_t most = std::min(maxNewLines(size), size);
+    uint32_t low = 0, high = 0;
+    while (low < most && !seen(low))
+        ++low;
+    while (high < most && !seen(size - 1 - high))
+        ++high;
+    if (high >= low && high > 0)
+        return {size - high, high};
+    if (low > 0)
+        return {0, low};
+    return {};
+}
+
+}  // namespace
+
+NewLines findNewLines(const ReprojectionHistory& history, const ViewRequest& view, const CameraFrame& camera)
+{
+    NewLines none;
     if (history.block.blockPx <= 1 || view.width == 0 || view.height == 0)
         return none;
     // History is kept only for the same projection (historyUsable), so the previous frustum is this one.
@@ -154,32 +177,34 @@ NewColumns findNewColumns(const ReprojectionHistory& history, const ViewRequest&
     const PreviousAxes prev = previousAxes(history, t, camera);
     const glm::dvec3 centreRay = camera.forwardEnu + t.centreX * camera.rightEnu + t.centreY * camera.upEnu;
     const double w = view.width, h = view.height;
-    // As the reconstruct pass: a column's ray at a row, projected into the previous image (pixels).
-    auto seen = [&](uint32_t x) {
-        for (double y : {0.5, 0.5 * h, h - 0.5})
-        {
-            const double nx = (x + 0.5) / w * 2.0 - 1.0, ny = y / h * 2.0 - 1.0;
-            const glm::dvec3 d = centreRay + nx * t.halfWidth * camera.rightEnu - ny * t.halfHeight * camera.upEnu;
-            const double z = glm::dot(d, prev.forward);
-            if (z <= 0.0)
-                return false;
-            const double q = (glm::dot(d, prev.right) / (z * t.halfWidth) + 1.0) * 0.5 * w;
-            if (q < 0.0 || q >= w)
-                return false;
-        }
+    // As the reconstruct pass: the ray of pixel position (x, y) projected into the previous image (pixels);
+    // false when it lies behind the previous camera.
+    auto project = [&](double x, double y, glm::dvec2& q) {
+        const double nx = x / w * 2.0 - 1.0, ny = y / h * 2.0 - 1.0;
+        const glm::dvec3 d = centreRay + nx * t.halfWidth * camera.rightEnu - ny * t.halfHeight * camera.upEnu;
+        const double z = glm::dot(d, prev.forward);
+        if (z <= 0.0)
+            return false;
+        q = glm::dvec2((glm::dot(d, prev.right) / (z * t.halfWidth) + 1.0) * 0.5 * w,
+                       (-glm::dot(d, prev.up) / (z * t.halfHeight) + 1.0) * 0.5 * h);
         return true;
     };
-    const uint32_t most = std::min(maxNewColumns(view.width), view.width);
-    uint32_t left = 0, right = 0;
-    while (left < most && !seen(left))
-        ++left;
-    while (right < most && !seen(view.width - 1 - right))
-        ++right;
-    if (right >= left && right > 0)
-        return {view.width - right, right};
-    if (left > 0)
-        return {0, left};
-    return none;
+    NewLines lines;
+    lines.columns = newBand(view.width, [&](uint32_t x) {
+        glm::dvec2 q;
+        for (double y : {0.5, 0.5 * h, h - 0.5})
+            if (!project(x + 0.5, y, q) || q.x < 0.0 || q.x >= w)
+                return false;
+        return true;
+    });
+    lines.rows = newBand(view.height, [&](uint32_t y) {
+        glm::dvec2 q;
+        for (double x : {0.5, 0.5 * w, w - 0.5})
+            if (!project(x, y + 0.5, q) || q.y < 0.0 || q.y >= h)
+                return false;
+        return true;
+    });
+    return lines;
 }
 
 void fillReprojectionParams(FrameParams& frame, const ReprojectionHistory& history, const ViewRequest& view,
@@ -192,6 +217,7 @@ void fillReprojectionParams(FrameParams& frame, const ReprojectionHistory& histo
     frame.previousUp = vec4(0.0f);
     frame.previousForward = vec4(0.0f);
     frame.previousEye = vec4(0.0f);
+    frame.newLines = uvec4(0u);
     if (!useHistory)
         return;
     const ViewTangents t = viewTangents(view);
@@ -199,10 +225,10 @@ void fillReprojectionParams(FrameParams& frame, const ReprojectionHistory& histo
     const glm::dmat3 ecefToEnu = glm::transpose(camera.enuToEcef);
     frame.previousRight = v4(prev.right, t.halfWidth);
     frame.previousUp = v4(prev.up, t.halfHeight);
-    // Column numbers are exact in float (below 2^24).
-    frame.previousForward = v4(prev.forward, double(history.newColumns.x0));
-    frame.previousEye =
-        v4(ecefToEnu * (history.lastCamera.eyeEcefM - camera.eyeEcefM), double(history.newColumns.count));
+    frame.previousForward = v4(prev.forward, 0.0);
+    frame.previousEye = v4(ecefToEnu * (history.lastCamera.eyeEcefM - camera.eyeEcefM), 0.0);
+    const NewLines& lines = history.newLines;
+    frame.newLines = uvec4(lines.columns.first, lines.columns.count, lines.rows.first, lines.rows.count);
 }
 
 }  // namespace sky

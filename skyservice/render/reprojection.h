@@ -53,21 +53,29 @@ struct MarchBlock
     std::string reason;    ///< why not 4 ("" when 4)
 };
 
-/// Columns at one side of the image whose rays the previous frame did not see (followed to infinity): in a
-/// turn, the band the view turns toward. The march marches every pixel of them, not one of each block,
-/// so they enter the history as marched and not interpolated from one pixel in B^2 (a fast turn would
-/// otherwise bring all its new content in blurred, for up to B^2 frames). Pitch changes are not covered:
-/// their new rows keep the interpolated fill.
-struct NewColumns
+/// Lines (columns or rows) at one side of the image.
+struct LineBand
 {
-    uint32_t x0 = 0;     ///< first column
+    uint32_t first = 0;  ///< first column (row)
     uint32_t count = 0;  ///< how many (0: none)
 };
 
-/// At most 1/kNewColumnsMaxShare of the width is marched that way (8 columns of 128, 240 of 3840: a turn
-/// of about 5 degrees per frame at 90 degrees of field of view); beyond it the rest keeps the fill.
-constexpr uint32_t kNewColumnsMaxShare = 16;
-inline uint32_t maxNewColumns(uint32_t widthPx) { return (widthPx + kNewColumnsMaxShare - 1) / kNewColumnsMaxShare; }
+/// The lines at the image borders whose rays the previous frame did not see (followed to infinity): in a
+/// turn, the columns at the side the view turns toward; in a pitch change, the rows at the top or bottom;
+/// both in a banked turn. The march marches every pixel of them, not one of each block, so they enter
+/// the history as marched and not interpolated from one pixel in B^2 (a fast turn would otherwise bring
+/// all its new content in blurred, for up to B^2 frames). A roll brings in the corners, which neither
+/// covers: they keep the interpolated fill.
+struct NewLines
+{
+    LineBand columns;
+    LineBand rows;
+};
+
+/// At most 1/kNewLinesMaxShare of the width (height) is marched that way (8 columns of 128, 240 of 3840:
+/// a turn of about 5 degrees per frame at 90 degrees of field of view); beyond it the rest keeps the fill.
+constexpr uint32_t kNewLinesMaxShare = 16;
+inline uint32_t maxNewLines(uint32_t sizePx) { return (sizePx + kNewLinesMaxShare - 1) / kNewLinesMaxShare; }
 
 /// What the renderer remembers of the last reprojected frame.
 struct ReprojectionHistory
@@ -80,7 +88,7 @@ struct ReprojectionHistory
     CameraFrame lastCamera;      ///< its camera, in double
     std::string lastDropReason;  ///< why the last reprojected frame did not use history ("" if it did)
     MarchBlock block;            ///< the march block of the frame being (or last) rendered
-    NewColumns newColumns;       ///< the columns that frame marches in full (none without history)
+    NewLines newLines;           ///< the lines that frame marches in full (none without history)
 };
 
 /// Position (x, y in 0..blockPx-1) of the marched pixel inside every block on frame `frameIndex`: the
@@ -103,15 +111,16 @@ MarchBlock chooseMarchBlock(const WeatherWindow& window, double eyeAltitudeM,
 bool historyUsable(const ReprojectionHistory& history, const ViewRequest& view, const CameraFrame& camera,
                    std::string& why);
 
-/// The columns of `view` (on `camera`) that the last frame in `history` did not see: on the side with
-/// more of them, counted from the image border inward while a column's rays at its top, middle and
-/// bottom all or partly fall off the previous image (left or right of it, or behind), at most
-/// maxNewColumns. None when the march block is 1 (every pixel is marched anyway).
-NewColumns findNewColumns(const ReprojectionHistory& history, const ViewRequest& view, const CameraFrame& camera);
+/// The lines of `view` (on `camera`) that the last frame in `history` did not see. Columns: on the side
+/// with more of them, counted from the image border inward while a column's rays at its top, middle and
+/// bottom all or partly fall off the previous image (left or right of it, or behind); rows the same
+/// with a row's rays at its left, middle and right falling off above or below. At most maxNewLines of
+/// each; none when the march block is 1 (every pixel is marched anyway).
+NewLines findNewLines(const ReprojectionHistory& history, const ViewRequest& view, const CameraFrame& camera);
 
 /// Fills frame.reprojection (block size history.block.blockPx, its phase), frame.previousRight/Up/Forward
 /// and frame.previousEye for a reprojected frame on `camera` (useHistory false: the reconstruct pass
-/// ignores the history images), history.newColumns in previousForward.w and previousEye.w.
+/// ignores the history images), and history.newLines in frame.newLines.
 void fillReprojectionParams(FrameParams& frame, const ReprojectionHistory& history, const ViewRequest& view,
                             const CameraFrame& camera, bool useHistory);
 

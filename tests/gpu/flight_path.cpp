@@ -36,6 +36,7 @@ void stepPose(ViewRequest& view, const Motion& motion)
     view.pose.lonDeg +=
         d * std::sin(h) / (cam.primeVerticalRadiusM * std::cos(view.pose.latDeg * M_PI / 180.0)) * 180.0 / M_PI;
     view.pose.altitudeM += motion.climbMS * kFrameS;
+    view.pose.pitchDeg += motion.pitchDegPerS * kFrameS;
     view.pose.headingDeg = std::fmod(view.pose.headingDeg + motion.turnDegPerS * kFrameS + 360.0, 360.0);
 }
 
@@ -49,12 +50,19 @@ FlightStats flySegment(Renderer& r, ViewRequest& view, const Motion& motion, int
         stepPose(view, motion);
         renderChecked(r, view, reprojected);
     }
-    uint32_t w = view.width;
+    uint32_t w = view.width, h = view.height;
     std::vector<ColumnBand> edges;
-    if (motion.turnDegPerS >= 0.0)
-        edges.push_back({w - kEdgeBandPx, w});
-    if (motion.turnDegPerS <= 0.0)
-        edges.push_back({0, kEdgeBandPx});
+    if (motion.pitchDegPerS > 0.0)
+        edges.push_back({0, w, 0, kEdgeBandPx});
+    else if (motion.pitchDegPerS < 0.0)
+        edges.push_back({0, w, h - kEdgeBandPx, h});
+    else
+    {
+        if (motion.turnDegPerS >= 0.0)
+            edges.push_back({w - kEdgeBandPx, w});
+        if (motion.turnDegPerS <= 0.0)
+            edges.push_back({0, kEdgeBandPx});
+    }
     RenderResult frame, reference, previousReference;
     ViewRequest previousView;
     for (int k = 0; k < measuredFrames; ++k)

@@ -18,6 +18,7 @@ struct Motion
     double speedMS = 0;      ///< ground speed along the heading (m/s)
     double turnDegPerS = 0;  ///< heading rate (degrees per second; + turns right)
     double climbMS = 0;      ///< vertical speed (m/s; + up)
+    double pitchDegPerS = 0; ///< pitch rate (degrees per second; + nose up)
 };
 
 /// One 60 Hz step of `motion` (dt = 1/60 s): position through the local radii of curvature.
@@ -41,8 +42,9 @@ struct FlightStats
     int fullBlockFramesNotExact = 0;  ///< block-1 frames whose cloud image differs from the full render
 };
 
-/// Which columns count as "the screen edges" of a flight: the 8 columns on the side the view turns
-/// toward, or both sides when it does not turn (flying forward brings new content in at every edge).
+/// Which lines count as "the screen edges" of a flight: the 8 columns on the side the view turns toward,
+/// or both sides when it does not turn (flying forward brings new content in at every edge); when the
+/// pitch changes, the 8 rows at the border the nose moves toward instead.
 constexpr uint32_t kEdgeBandPx = 8;
 
 /**

@@ -36,8 +36,8 @@ double toPsnr(double peak, double se, double count)
 // Calls f(pixelIndex) for every pixel of `band`.
 template <class F> void forBand(const RenderResult& r, ColumnBand band, F f)
 {
-    uint32_t x1 = std::min(band.x1, r.width);
-    for (uint32_t y = 0; y < r.height; ++y)
+    uint32_t x1 = std::min(band.x1, r.width), y1 = std::min(band.y1, r.height);
+    for (uint32_t y = band.y0; y < y1; ++y)
         for (uint32_t x = band.x0; x < x1; ++x)
             f(size_t(y) * r.width + x);
 }

@@ -15,11 +15,14 @@
 namespace sky::testscenes
 {
 
-/// Columns [x0, x1) of the image (all columns by default).
+/// Columns [x0, x1) of the image (all columns by default), in rows [y0, y1) (all rows by default): a band
+/// of columns, or of rows when the columns are left at their default.
 struct ColumnBand
 {
     uint32_t x0 = 0;
     uint32_t x1 = 0xffffffffu;
+    uint32_t y0 = 0;
+    uint32_t y1 = 0xffffffffu;
 };
 
 double psnrCloud(const RenderResult& test, const RenderResult& reference, ColumnBand band = {});

@@ -21,10 +21,10 @@ double displaySharpness(const RenderResult& image, ColumnBand band)
 {
     if (image.width < 2 || image.height < 2 || image.displayRgba8.size() < size_t(image.width) * image.height * 4)
         return 0.0;
-    const uint32_t x1 = std::min(band.x1, image.width - 1);
+    const uint32_t x1 = std::min(band.x1, image.width - 1), y1 = std::min(band.y1, image.height - 1);
     double sum = 0.0;
     size_t count = 0;
-    for (uint32_t y = 0; y + 1 < image.height; ++y)
+    for (uint32_t y = band.y0; y < y1; ++y)
         for (uint32_t x = band.x0; x < x1; ++x)
         {
             const double l = luma(image, x, y);

@@ -96,11 +96,11 @@ TEST_F(Memory, FreshImagesShrinkWhenTheEyeLeavesTheCloudAndHistoryStays)
     RenderResult above = renderOk(v, q);
     ASSERT_EQ(above.marchBlockPx, 4u) << above.marchBlockReason;
     EXPECT_TRUE(lastHistoryDropReason(*renderer).empty()) << lastHistoryDropReason(*renderer);
-    // One texel per 4x4 block, and beside them room for the columns a turn marches in full
-    // (reprojection.h NewColumns): 4 texels per column.
-    const uint32_t freshWidth = v.width / 4 + maxNewColumns(v.width) * 4;
+    // One texel per 4x4 block, and beside and below them room for the columns and rows a turn or a pitch
+    // change marches in full (reprojection.h NewLines): 4 texels per line.
+    const uint32_t freshWidth = v.width / 4 + maxNewLines(v.width) * 4;
     EXPECT_EQ(renderer->reconstruct.freshCloudImage.extent.width, freshWidth);
-    EXPECT_EQ(renderer->reconstruct.freshCloudImage.extent.height, v.height / 4);
+    EXPECT_EQ(renderer->reconstruct.freshCloudImage.extent.height, v.height / 4 + maxNewLines(v.height) * 4);
     EXPECT_EQ(renderer->reconstruct.freshDepthImage.extent.width, freshWidth);
     EXPECT_LT(totalBytes(), insideBytes);
     std::printf("64x36 reprojected: %llu bytes inside the deck, %llu above it\n", (unsigned long long)insideBytes,

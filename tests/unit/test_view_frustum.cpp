@@ -148,7 +148,7 @@ TEST(ViewFrustum, BadAnglesAreNamed)
 // A right turn of one degree brings new columns in at the right border, a left turn at the left one; the
 // band ends where the previous image begins (the projection above: the first column inside it has all
 // three rays on the previous image, the band's last one not); a large turn is capped, no turn or a block
-// of 1 marches none; the band reaches the shader in previousForward.w and previousEye.w.
+// of 1 marches none; the band reaches the shader in frame.newLines.
 TEST(ViewFrustum, ATurnMarchesTheColumnsThePreviousFrameDidNotSee)
 {
     for (bool asymmetric : {false, true})
@@ -167,20 +167,20 @@ TEST(ViewFrustum, ATurnMarchesTheColumnsThePreviousFrameDidNotSee)
             v.pose.headingDeg += deg;
             const CameraFrame cam = computeCameraFrame(v.pose);
             ReprojectionHistory h = history;
-            h.newColumns = findNewColumns(h, v, cam);
+            h.newLines = findNewLines(h, v, cam);
             if (f)
             {
                 *f = frameFor(cam, v);
                 fillReprojectionParams(*f, h, v, cam, true);
             }
-            return h.newColumns;
+            return h.newLines.columns;
         };
         FrameParams f;
-        const NewColumns right = turned(1.0, &f);
+        const LineBand right = turned(1.0, &f);
         ASSERT_GT(right.count, 0u) << asymmetric;
-        EXPECT_EQ(right.x0 + right.count, request.width);
-        EXPECT_EQ(f.previousForward.w, float(right.x0));
-        EXPECT_EQ(f.previousEye.w, float(right.count));
+        EXPECT_EQ(right.first + right.count, request.width);
+        EXPECT_EQ(f.newLines.x, right.first);
+        EXPECT_EQ(f.newLines.y, right.count);
         auto inside = [&](double x) {
             bool all = true;
             for (double y : {0.5, 24.0, 47.5})
@@ -190,14 +190,67 @@ TEST(ViewFrustum, ATurnMarchesTheColumnsThePreviousFrameDidNotSee)
             }
             return all;
         };
-        EXPECT_TRUE(inside(right.x0 - 0.5)) << "the column before the band was seen";
-        EXPECT_FALSE(inside(right.x0 + 0.5)) << "the band's first column was not";
-        const NewColumns left = turned(-1.0);
-        EXPECT_EQ(left.x0, 0u);
+        EXPECT_TRUE(inside(right.first - 0.5)) << "the column before the band was seen";
+        EXPECT_FALSE(inside(right.first + 0.5)) << "the band's first column was not";
+        const LineBand left = turned(-1.0);
+        EXPECT_EQ(left.first, 0u);
         EXPECT_GT(left.count, 0u);
         EXPECT_EQ(turned(0.0).count, 0u);
-        EXPECT_EQ(turned(20.0).count, maxNewColumns(request.width));
+        EXPECT_EQ(turned(20.0).count, maxNewLines(request.width));
         history.block.blockPx = 1;
         EXPECT_EQ(turned(1.0).count, 0u);
+    }
+}
+
+// A pitch change brings new rows in: nose up at the top, nose down at the bottom; the band ends where the
+// previous image begins (the first row inside it has its left, middle and right rays on the previous
+// image, the band's last one not); a large change is capped; the band reaches the shader in frame.newLines.
+TEST(ViewFrustum, APitchChangeMarchesTheRowsThePreviousFrameDidNotSee)
+{
+    for (bool asymmetric : {false, true})
+    {
+        ViewRequest request = offCentre();
+        request.frustum.asymmetric = asymmetric;
+        request.fovYDeg = 40.0;
+        ReprojectionHistory history;
+        history.valid = true;
+        history.lastView = request;
+        history.lastCamera = computeCameraFrame(request.pose);
+        history.block.blockPx = 4;
+        auto pitched = [&](double deg, FrameParams* f = nullptr) {
+            ViewRequest v = request;
+            v.pose.pitchDeg += deg;
+            const CameraFrame cam = computeCameraFrame(v.pose);
+            ReprojectionHistory h = history;
+            h.newLines = findNewLines(h, v, cam);
+            if (f)
+            {
+                *f = frameFor(cam, v);
+                fillReprojectionParams(*f, h, v, cam, true);
+            }
+            return h.newLines.rows;
+        };
+        FrameParams f;
+        const LineBand up = pitched(1.0, &f);
+        ASSERT_GT(up.count, 0u) << asymmetric;
+        EXPECT_EQ(up.first, 0u);
+        EXPECT_EQ(f.newLines.z, up.first);
+        EXPECT_EQ(f.newLines.w, up.count);
+        auto inside = [&](double y) {
+            bool all = true;
+            for (double x : {0.5, 48.0, 95.5})
+            {
+                const double q = projectPrevious(f, viewRay(f, x, y)).y;
+                all = all && q >= 0.0 && q < request.height;
+            }
+            return all;
+        };
+        EXPECT_TRUE(inside(up.count + 0.5)) << "the row after the band was seen";
+        EXPECT_FALSE(inside(up.count - 0.5)) << "the band's last row was not";
+        const LineBand down = pitched(-1.0);
+        EXPECT_EQ(down.first + down.count, request.height);
+        EXPECT_GT(down.count, 0u);
+        EXPECT_EQ(pitched(0.0).count, 0u);
+        EXPECT_EQ(pitched(20.0).count, maxNewLines(request.height));
     }
 }
