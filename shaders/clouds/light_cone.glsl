@@ -3,6 +3,16 @@
 // the light volume that precomputes that part around the eye (light_volume.comp.glsl). Included after
 // cloud_density.glsl.
 
+// The octaves of multiple scattering beyond the last are kept as one diffuse term that light diffusing
+// through a conservative cloud attenuates as 1 / (1 + k tau) (the two-stream transmission,
+// k = 0.75 (1 - g) ~ 0.1 for cloud droplets; 0.2 matched the path-traced reference): cloud_lighting.glsl
+// multipleScattering. The light volume holds this factor of its far samples beside their transmittance.
+const float kDiffusionPerOpticalDepth = 0.2f;
+float diffusionFactor(float opticalDepth)
+{
+    return 1.0f / (1.0f + kDiffusionPerOpticalDepth * opticalDepth);
+}
+
 // Offsets that spread the six light samples over a cone (unit-length-ish, fixed so frames agree).
 const vec3 kConeKernel[6] = vec3[](vec3(0.38f, -0.52f, 0.29f), vec3(-0.71f, 0.12f, -0.44f),
                                   vec3(0.15f, 0.83f, -0.31f), vec3(-0.27f, -0.36f, 0.88f),
