@@ -4,7 +4,7 @@
 #include "shaders/clouds/key_light.glsl"
 
 // The light cone of one lit view sample: optical depth toward the light from 6 samples in a widening
-// cone, then one long sample at 3x the cone length (Schneider 2015); cheap density once the path is
+// cone, then one long sample beyond it (Schneider 2015; light_cone.glsl); cheap density once the path is
 // already dense, and beyond the first frame.marchLod.w samples. Within 15.4 km of the eye those cheap far
 // samples come precomputed from the light volume or its far cascade (shaders/shared/light_volume.h): one
 // fetch instead of 5 density lookups. Beyond frame.marchLod.z metres (0: never) 3 cheap samples cover the
@@ -26,7 +26,9 @@ struct LightCone
     float coveredM;        // the length the cone steps so far cover
     float depth;           // relative density x metres so far
     float tailTransmittance;  // the light volume's transmittance of the rest; < 0: no volume here
-    float tailDepth;       // relative density x metres of the far samples: marched here, or taken over
+    // Relative density x metres of the far samples: marched here, or taken over; with the volume, the
+    // depth whose diffusion factor (light_cone.glsl) the volume holds for them.
+    float tailDepth;
     bool tailTaken;        // the far samples' depth is taken over from an earlier cone (ConeTail)
     bool tailMarched;      // this cone marches its far samples (the next lit samples may take them)
     bool nearMerged;       // its detailed near samples are taken as one, over their whole length
@@ -39,6 +41,12 @@ struct ConeTail
     float depth;
     bool valid;
 };
+
+// The relative density x metres whose diffusion factor is `factor` (diffusionFactor inverted).
+float diffusionDepth(float factor)
+{
+    return (1.0f / max(factor, 1e-3f) - 1.0f) / (kDiffusionPerOpticalDepth * max(frame.cloudLook.x, 1e-12f));
+}
 
 LightCone beginLightCone(vec3 dir, float originT, float distanceM, ConeTail tail)
 {
@@ -70,12 +78,16 @@ LightCone beginLightCone(vec3 dir, float originT, float distanceM, ConeTail tail
         if (lightVolumeCoordinates(frame.lightVolume, planeM, h, uvw))
         {
             c.live = c.detailed;
-            c.tailTransmittance = textureLod(lightVolume, uvw, 0.0f).x;
+            vec2 tail = textureLod(lightVolume, uvw, 0.0f).xy;
+            c.tailTransmittance = tail.x;
+            c.tailDepth = diffusionDepth(tail.y);
         }
         else if (lightVolumeCoordinates(frame.lightVolumeFar, planeM, h, uvw))
         {
             c.live = c.detailed;
-            c.tailTransmittance = textureLod(lightVolumeFar, uvw, 0.0f).x;
+            vec2 tail = textureLod(lightVolumeFar, uvw, 0.0f).xy;
+            c.tailTransmittance = tail.x;
+            c.tailDepth = diffusionDepth(tail.y);
         }
         else if (tail.valid && distanceM > frame.lightVolumeFar.w && abs(originT - tail.originT) < frame.lightVolume.w)
         {
@@ -115,9 +127,9 @@ vec3 lightConeSamplePoint(LightCone c, vec3 dir, vec3 lightDir, out bool cheap, 
         cheap = c.next >= c.detailed || c.depth * frame.cloudLook.x > 0.3f;
         return coneSamplePoint(origin, lightDir, c.next, c.coveredM + lengthM, lengthM);
     }
-    lengthM = c.coveredM;
+    lengthM = kConeLongSampleSpan * c.coveredM;  // light_cone.glsl says why
     cheap = true;
-    return origin + lightDir * (3.0f * c.coveredM);
+    return origin + lightDir * (kConeLongSampleAt * c.coveredM);
 }
 
 void lightConeAdd(inout LightCone c, float density, float lengthM)
@@ -130,7 +142,7 @@ void lightConeAdd(inout LightCone c, float density, float lengthM)
     c.next = c.next == 0u && c.nearMerged ? c.detailed : c.next + 1u;
 }
 
-// Optical depth toward the light of a finished cone.
+// Optical depth toward the light of a finished cone, for the octaves (exponential attenuation).
 float lightConeOpticalDepth(LightCone c)
 {
     // The volume holds transmittance (light_volume.h says why); 1e-7: below it, no light reaches.
@@ -141,35 +153,68 @@ float lightConeOpticalDepth(LightCone c)
     return c.depth * frame.cloudLook.x;
 }
 
+// Optical depth toward the light of a finished cone, for the diffuse term (diffusionFactor). Marched, the
+// same as lightConeOpticalDepth; from the volume, its far samples' depth comes from their interpolated
+// diffusion factor, not from their transmittance: the diffuse term keeps light where the transmittance
+// is gone (tens of optical depths into a cumulus), and the transmittance of texels that deep, interpolated,
+// is that of the least deep one (its interior came out up to 2x too bright against the marched cone).
+float lightConeDiffusionDepth(LightCone c)
+{
+    if (c.tailTransmittance >= 0.0f)
+        return (c.depth + c.tailDepth) * frame.cloudLook.x;
+    return lightConeOpticalDepth(c);
+}
+
 // Light scattered toward the eye per unit incident radiance: multiple-scattering octaves (Wrenninge
 // 2013, Hillaire 2016) of a two-lobe phase function, with Beer-powder darkening seen away from the light.
+// The octaves beyond the last carry the rest of the geometric series, b^N / (1 - b) of the energy, as one
+// diffuse term: isotropic phase, attenuated not exponentially but as light diffusing through a
+// conservative cloud (diffusionFactor of `diffusionDepth`, light_cone.glsl). Without it a few octaves lose
+// most of the light that a thick cloud scatters many times: sunlit faces came out 2-3x darker than the
+// path-traced reference, and the light deep in a cumulus fell to nothing (exp(-tau a^N)) where the
+// reference keeps a few per cent.
+// No octave beyond the first is attenuated more than that diffusing light: light scattered once already is
+// part of the diffuse field, and exp(-tau a^o) (a^o = 0.5, 0.25) fell below it from tau ~1 on. With it the
+// brightness hung on the octave count: 3 octaves instead of 2 took 10 % off the mean luminance of the
+// cumulus seen from among them (0.77 of the reference's instead of 0.86), as the third octave took energy
+// from the diffuse term and lost it by tau 10; now 2 and 3 octaves agree within 2 %.
 // The powder factor E(d)/e^-d = 2 (1 - e^-2d) is taken on the local optical depth over ~100 m (as Nubis
 // does with the sample density), so thin wisps and crevices darken while sunlit faces do not.
-float multipleScattering(float opticalDepth, float cosTheta, float localOpticalDepth)
+float multipleScattering(float opticalDepth, float diffusionDepth, float cosTheta, float localOpticalDepth)
 {
     float a = 1.0f;
     float b = 1.0f;
     float c = 1.0f;
     float sum = 0.0f;
+    float diffusion = diffusionFactor(diffusionDepth);
     int octaves = int(frame.cloudLook.w);
     for (int o = 0; o < octaves; ++o)
     {
         float phase = phaseTwoLobeHG(frame.phaseTerms.x * c, frame.phaseTerms.y * c, frame.phaseTerms.z, cosTheta);
-        sum += b * phase * exp(-opticalDepth * a);
+        sum += b * phase * (o == 0 ? exp(-opticalDepth) : max(exp(-opticalDepth * a), diffusion));
         a *= frame.lightingTerms.x;
         b *= frame.lightingTerms.y;
         c *= frame.lightingTerms.z;
     }
+    sum += b / max(1.0f - frame.lightingTerms.y, 0.05f) * (0.25f / 3.14159265f) * diffusion;
     float powder = 0.5f * beerPowder(localOpticalDepth) / max(exp(-localOpticalDepth), 1e-6f);
     float powderWeight = frame.lightingTerms.w * saturate1(0.5f - 0.5f * cosTheta);
     return sum * mix(1.0f, powder, powderWeight);
 }
 
-// Ambient light: sky above (brighter toward the top of the cloud) and ground bounce below.
+// Ambient light: sky above (brighter toward the top of the cloud) and ground bounce below. Low in a thick
+// cloud the sky is seen only through the cloud above (kSkyAmbientAtBase of it at the base). The ground
+// sends E albedo / pi up, over the lower half of the sphere only, from ground that is largely in the
+// shadow of the cloud above it (kGroundBounceShare: half a sphere, ~1/3 lit). With the earlier 0.35 and
+// 1 the undersides of a cumulus seen from below were as bright as its sunlit towers; the path-traced
+// reference has them at ~0.2 of the towers.
+const float kSkyAmbientAtBase = 0.05f;
+const float kGroundBounceShare = 0.15f;
 vec3 ambientLight(float heightFraction)
 {
-    vec3 sky = frame.ambientSky.rgb * mix(0.35f, 1.0f, heightFraction);
-    vec3 ground = frame.ambientGround.rgb * (frame.ambientSky.w / 3.14159265f) * (1.0f - heightFraction);
+    vec3 sky = frame.ambientSky.rgb * mix(kSkyAmbientAtBase, 1.0f, heightFraction);
+    vec3 ground = frame.ambientGround.rgb * (kGroundBounceShare * frame.ambientSky.w / 3.14159265f) *
+                  (1.0f - heightFraction);
     return frame.cloudLook.z * (sky + ground);
 }
 
@@ -247,7 +292,9 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
     float litStepM = 0.0f;  // the step it stands for
     LightCone cone = LightCone(0.0f, 0.0f, 1u, 0u, 0u, 0.0f, 0.0f, -1.0f, 0.0f, false, false, false);
     ConeTail coneTail = ConeTail(0.0f, 0.0f, false);
-    // The last cone marched here (not taken over): where it started and its optical depth; deep lit samples
+    // The last cone marched here (not taken over): where it started and its optical depth (the diffuse
+    // term's: lightConeDiffusionDepth; one register, so the octaves of the deep samples that take it take
+    // that too, where the volume lit it a little deeper than its transmittance says); deep lit samples
     // within frame.detailLod.w metres of it take that light.
     float lastConeT = 0.0f;
     float lastConeDepth = -1.0f;
@@ -396,8 +443,8 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             if (deep && lastConeDepth >= 0.0f && abs(litT - lastConeT) < frame.detailLod.w)
             {
                 // Behind a view transmittance below frame.detailLod.x the light of the last cone, finished.
-                cone = LightCone(litT, 0.0f, 0u, 0u, 0u, 0.0f, 0.0f, exp(-lastConeDepth), 0.0f, false, false,
-                                 false);
+                cone = LightCone(litT, 0.0f, 0u, 0u, 0u, 0.0f, 0.0f, exp(-lastConeDepth),
+                                 lastConeDepth / max(frame.cloudLook.x, 1e-12f), false, false, false);
             }
             else
                 cone = beginLightCone(dir, litT, t, coneTail);
@@ -410,13 +457,15 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
         if (cone.tailMarched)
             coneTail = ConeTail(cone.originT, cone.tailDepth, true);
         float lightDepth = lightConeOpticalDepth(cone);
+        float diffusionDepth = lightConeDiffusionDepth(cone);
         if (cone.live > 0u)
         {
             lastConeT = cone.originT;
-            lastConeDepth = lightDepth;
+            lastConeDepth = diffusionDepth;
         }
         float cosTheta = dot(dir, keyLightDirection());
-        vec3 source = litSigmaS * (lightAtCloud * multipleScattering(lightDepth, cosTheta, litSigmaS * 100.0f) +
+        vec3 source = litSigmaS * (lightAtCloud * multipleScattering(lightDepth, diffusionDepth, cosTheta,
+                                                                     litSigmaS * 100.0f) +
                                    ambientLight(litHeightFraction));
         radiance += transmittance * integrateScattering(source, litSigmaE, litStepM);
         float next = transmittance * exp(-litSigmaE * litStepM);

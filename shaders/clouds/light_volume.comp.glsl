@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Builds the light volume (shaders/shared/light_volume.h): for each texel, the transmittance of the far
-// cone samples toward the key light (from frame.marchLod.w on) and of the long sample, exactly as the
-// march would take them at the texel centre (coneTailDepth). One invocation per texel.
+// Builds the light volume (shaders/shared/light_volume.h): for each texel, the transmittance and the
+// diffusion factor (light_cone.glsl) of the far cone samples toward the key light (from frame.marchLod.w
+// on) and of the long sample, exactly as the march would take them at the texel centre (coneTailDepth).
+// One invocation per texel.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require  // [[dont_unroll]] in cloud_density.glsl
@@ -19,7 +20,7 @@ layout(binding = 1) uniform sampler2DArray weatherWindow;
 layout(binding = 2) uniform sampler3D baseNoise;
 layout(binding = 3) uniform sampler3D detailNoise;  // not read (cheap density only); cloud_density.glsl names it
 layout(binding = 4) uniform sampler2D curlNoise;    // idem
-layout(binding = 5, r16f) uniform writeonly image3D lightVolumeOut;
+layout(binding = 5, rg16f) uniform writeonly image3D lightVolumeOut;
 // Which volume this dispatch fills: 0 the light volume (frame.lightVolume), 1 its far cascade.
 layout(push_constant) uniform LightVolumePush { uint cascade; } push;
 
@@ -58,5 +59,6 @@ void main()
     uint samples = min(frame.march.y, 6u);
     uint first = min(uint(frame.marchLod.w), samples);
     float depth = coneTailDepth(p, keyLightDirection(), first, samples, frame.phaseTerms.w);
-    imageStore(lightVolumeOut, texel, vec4(exp(-depth * frame.cloudLook.x), 0.0f, 0.0f, 0.0f));
+    float opticalDepth = depth * frame.cloudLook.x;
+    imageStore(lightVolumeOut, texel, vec4(exp(-opticalDepth), diffusionFactor(opticalDepth), 0.0f, 0.0f));
 }

@@ -3,13 +3,16 @@
 // so that a lit view sample near the eye reads one texel instead of marching the far part of its light
 // cone. Shared by the C++ renderer and the shaders.
 //
-// Texel (i, j, k) of a LIGHT_VOLUME_SIZE^2 x LIGHT_VOLUME_LEVELS R16F volume holds, for the point at
+// Texel (i, j, k) of a LIGHT_VOLUME_SIZE^2 x LIGHT_VOLUME_LEVELS RG16F volume holds, for the point at
 //   window-plane position frame.lightVolume.xy + (i + 0.5, j + 0.5) * frame.lightVolume.z (metres, the
 //   unwarped plane of the weather window: fixed to the ground while the window is, so the texels do not
 //   slide with the eye), altitude shell.x + (k + 0.5) / LEVELS * (shell.y - shell.x),
-// the transmittance exp(-cloudLook.x x relative density x metres) of the cone samples from
-// frame.marchLod.w on and of the long sample, all with the cheap (base-shape) density: the tail of
-// the light cone (LightCone, shaders/clouds/cloud_lighting.glsl). Transmittance, not optical depth, because the
+// the transmittance exp(-tau) (x) and the diffusion factor 1 / (1 + k tau) (y, shaders/clouds/light_cone.glsl),
+// tau = cloudLook.x x relative density x metres of the cone samples from frame.marchLod.w on and of the
+// long sample, all with the cheap (base-shape) density: the tail of the light cone (LightCone,
+// shaders/clouds/cloud_lighting.glsl). Each of the light's two attenuations is interpolated as itself:
+// the transmittance of texels deep in a cumulus, interpolated, is the least deep one's, which lit the
+// diffuse term up to 2x too brightly there. Transmittance, not optical depth, because the
 // march interpolates between texels: across a cloud's edge, where the tail goes from clear to opaque, the
 // mean of two optical depths made the lit side far too dark (Jensen: exp of a mean is below the mean of
 // exps); measured on tests/gpu/test_light_volume.cpp's cumulus from below, 33.6 dB with optical depth. The first cone samples stay live and detailed,

@@ -16,7 +16,8 @@ SkyStatus createLightVolumePass(const Context& ctx, MemoryTracker& memory, Light
     SKY_TRY(createProgram(ctx, pass.program, "light_volume"));
     ImageDesc d;
     d.viewType = VK_IMAGE_VIEW_TYPE_3D;
-    d.format = VK_FORMAT_R16_SFLOAT;  // transmittance: half floats keep 11 bits down to 6e-5, less to 6e-8
+    // Transmittance (half floats keep 11 bits down to 6e-5, less to 6e-8) and diffusion factor (0..1).
+    d.format = VK_FORMAT_R16G16_SFLOAT;
     d.width = d.height = LIGHT_VOLUME_SIZE;
     d.depth = LIGHT_VOLUME_LEVELS;
     SKY_TRY(createImage(ctx, memory, pass.image, d, "light volume"));

@@ -35,7 +35,7 @@ struct LightVolumePass
 };
 
 /// Loads the program and creates the volume image and its far cascade's (each LIGHT_VOLUME_SIZE^2 x
-/// LIGHT_VOLUME_LEVELS, R16F: 0.44 MB), layout GENERAL.
+/// LIGHT_VOLUME_LEVELS, RG16F: 0.88 MB), layout GENERAL.
 SkyStatus createLightVolumePass(const Context& ctx, MemoryTracker& memory, LightVolumePass& pass);
 void destroyLightVolumePass(const Context& ctx, MemoryTracker& memory, LightVolumePass& pass);
 

@@ -54,7 +54,8 @@ struct QualitySettings
     double detailErosion = 0.35;     ///< strength of the detail-noise erosion
     double ambientStrength = 1.0;    ///< multiplier on sky and ground ambient light
     double octaveAttenuation = 0.5;  ///< a: extinction scale per octave
-    double octaveContribution = 0.5; ///< b: energy per octave
+    /// b: energy per octave; the octaves beyond the last are kept as one diffuse term (cloud_lighting.glsl)
+    double octaveContribution = 0.75;
     double octaveEccentricity = 0.5; ///< c: phase eccentricity scale per octave
     double powderStrength = 0.6;     ///< weight of Beer-powder darkening seen away from the light
     double phaseForwardG = 0.8;      ///< forward lobe of the two-lobe Henyey-Greenstein

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 namespace sky::testscenes
 {
@@ -56,6 +57,36 @@ double psnrCloud(const RenderResult& test, const RenderResult& reference, Column
         }
     });
     return toPsnr(referencePeak(reference), se, count);
+}
+
+double radianceScale(const RenderResult& reference)
+{
+    std::vector<double> brightest;
+    for (size_t p = 0; p < reference.cloudRgbaHalf.size() / 4; ++p)
+        if (half(reference, p * 4 + 3) >= 0.5f)
+            brightest.push_back(
+                double(std::max({half(reference, p * 4), half(reference, p * 4 + 1), half(reference, p * 4 + 2)})));
+    if (brightest.empty())
+        return 1.0;
+    auto at = brightest.begin() + std::ptrdiff_t(0.99 * double(brightest.size() - 1));
+    std::nth_element(brightest.begin(), at, brightest.end());
+    return *at > 0.0 ? *at : 1.0;
+}
+
+double psnrCloudScaled(const RenderResult& test, const RenderResult& reference, ColumnBand band, double rgbScale)
+{
+    const double scale = rgbScale > 0.0 ? rgbScale : radianceScale(reference);
+    double se = 0.0, count = 0.0;
+    forBand(reference, band, [&](size_t p) {
+        for (size_t c = 0; c < 4; ++c)
+        {
+            double d = double(half(test, p * 4 + c)) - double(half(reference, p * 4 + c));
+            d /= c < 3 ? scale : 1.0;
+            se += d * d;
+            count += 1.0;
+        }
+    });
+    return toPsnr(1.0, se, count);
 }
 
 double psnrDisplay(const RenderResult& test, const RenderResult& reference, ColumnBand band)

@@ -1,98 +1,36 @@
 // SPDX-License-Identifier: MIT
 // sky-reference-looks: the look views of issue 22 rendered in real time and by the reference path tracer
 // (skyservice/render/reference_renderer.h), side by side in OUT/reference-looks.png, with the statistics
-// the real-time lighting is to match printed per view. A measurement, not a test: minutes on lavapipe.
+// the real-time lighting is to match printed per view (tests/gpu/look_stats.h says what they are). A
+// measurement, not a test: minutes on lavapipe.
 //
-//   sky-reference-looks [OUT_DIR] [SAMPLES_PER_PIXEL] [WIDTH HEIGHT]     (defaults: out 64 160 90)
-//
-// Statistics over the cloud pixels (alpha > 0.5 in each render's own cloud image), luminance of the cloud
-// radiance / alpha (Rec. 709 weights, pre-exposed like the EXR files, the same exposure in both):
-//  - median: the median luminance;
-//  - underside/top: the median luminance of the cloud pixels whose first-collision altitude (eye altitude
-//    + depth along the ray, on the sphere) lies in the lowest fifth of those pixels' altitudes, over that of
-//    the highest fifth. From below that compares the bases with the sunlit towers; it is a stand-in for the
-//    issue's underside / sunlit-side ratio that needs no cloud segmentation.
+//   sky-reference-looks [OUT_DIR] [SAMPLES_PER_PIXEL] [WIDTH HEIGHT] [--config FILE] [--cache DIR] [--views LIST]
+//     defaults: out 64 160 90. --config: a quality file (docs/config.md keys) over the test quality, for
+//     tuning the real-time lighting; the reference takes the same file (its phase function is the model's).
+//     --cache: the path-traced cloud layers are kept in DIR per view, size and samples and read back when
+//     there (the reference depends only on the view, the model and the samples, not on the real-time light).
+//     --views: the views to render, by key, comma-separated (under, among, above; default all): the view from
+//     above is by far the slowest to path-trace.
+#include "skyservice/app/config_file.h"
 #include "skyservice/output/contact_sheet.h"
 #include "skyservice/render/reference_renderer.h"
 #include "skyservice/sky/builtin_weather.h"
+#include "tests/gpu/look_stats.h"
 #include "tests/gpu/scenes.h"
 
-#include <glm/gtc/packing.hpp>
-
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 using namespace sky;
 
 namespace
 {
 
-struct LookStats
-{
-    size_t cloudPixels = 0;
-    double medianLuminance = 0;
-    double undersideOverTop = 0;
-};
-
-double median(std::vector<double> v)
-{
-    if (v.empty())
-        return 0.0;
-    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
-    return v[v.size() / 2];
-}
-
-LookStats measure(const ViewRequest& view, const RenderResult& r)
-{
-    const CameraFrame camera = computeCameraFrame(view.pose);
-    const double radiusM = 6371000.0;
-    struct Pixel
-    {
-        double luminance, altitudeM;
-    };
-    std::vector<Pixel> cloud;
-    for (uint32_t y = 0; y < r.height; ++y)
-        for (uint32_t x = 0; x < r.width; ++x)
-        {
-            const size_t i = size_t(y) * r.width + x;
-            const double a = double(glm::unpackHalf1x16(r.cloudRgbaHalf[i * 4 + 3]));
-            if (a <= 0.5)
-                continue;
-            double rgb[3];
-            for (int c = 0; c < 3; ++c)
-                rgb[c] = double(glm::unpackHalf1x16(r.cloudRgbaHalf[i * 4 + size_t(c)])) / a;
-            const glm::dvec3 dir = testscenes::pixelRayEnu(camera, view, x + 0.5, y + 0.5);
-            const double t = double(r.cloudDepthM[i]);
-            const double altitude = view.pose.altitudeM + t * dir.z + t * t * (1.0 - dir.z * dir.z) / (2.0 * radiusM);
-            cloud.push_back({0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2], altitude});
-        }
-    LookStats s;
-    s.cloudPixels = cloud.size();
-    std::vector<double> lum;
-    for (const Pixel& p : cloud)
-        lum.push_back(p.luminance);
-    s.medianLuminance = median(lum);
-    std::sort(cloud.begin(), cloud.end(), [](const Pixel& a, const Pixel& b) { return a.altitudeM < b.altitudeM; });
-    const size_t fifth = cloud.size() / 5;
-    if (fifth > 0)
-    {
-        std::vector<double> low, high;
-        for (size_t k = 0; k < fifth; ++k)
-        {
-            low.push_back(cloud[k].luminance);
-            high.push_back(cloud[cloud.size() - 1 - k].luminance);
-        }
-        const double top = median(high);
-        s.undersideOverTop = top > 0 ? median(low) / top : 0.0;
-    }
-    return s;
-}
-
 struct Look
 {
     const char* name;
+    const char* key;  // the cache file's name
     double altM, pitchDeg, headingDeg;
 };
 
@@ -100,11 +38,28 @@ struct Look
 
 int main(int argc, char** argv)
 {
-    const std::string outDir = argc > 1 ? argv[1] : "out";
+    std::vector<std::string> positional;
+    std::string configPath, cacheDir, views = "under,among,above";
+    for (int i = 1; i < argc; ++i)
+    {
+        const std::string arg = argv[i];
+        if ((arg == "--config" || arg == "--cache" || arg == "--views") && i + 1 < argc)
+            (arg == "--config" ? configPath : arg == "--cache" ? cacheDir : views) = argv[++i];
+        else
+            positional.push_back(arg);
+    }
+    const std::string outDir = positional.size() > 0 ? positional[0] : "out";
     ReferenceSettings settings;
-    settings.samplesPerPixel = argc > 2 ? uint32_t(std::stoul(argv[2])) : 64u;
-    const uint32_t width = argc > 4 ? uint32_t(std::stoul(argv[3])) : 160u;
-    const uint32_t height = argc > 4 ? uint32_t(std::stoul(argv[4])) : 90u;
+    settings.samplesPerPixel = positional.size() > 1 ? uint32_t(std::stoul(positional[1])) : 64u;
+    const uint32_t width = positional.size() > 3 ? uint32_t(std::stoul(positional[2])) : 160u;
+    const uint32_t height = positional.size() > 3 ? uint32_t(std::stoul(positional[3])) : 90u;
+    QualitySettings quality = testscenes::testQuality();
+    std::string error;
+    if (!configPath.empty() && !applyConfigFile(configPath, quality, error))
+    {
+        std::fprintf(stderr, "sky-reference-looks: %s\n", error.c_str());
+        return 2;
+    }
 
     Renderer renderer;
     RendererOptions options;
@@ -121,34 +76,51 @@ int main(int argc, char** argv)
     setWeather(renderer, makeBuiltinWeather(0));
     // The views of issue 22 at 44.3 N 7.5 E (the built-in cumulus, base 1200 m), 2026-06-21 noon UTC.
     const Look looks[] = {
-        {"under cumulus, 500 m, pitch 10", 500.0, 10.0, 0.0},
-        {"among cumulus, 1500 m", 1500.0, 0.0, 0.0},
-        {"cumulus from above, 4000 m", 4000.0, -15.0, 0.0},
+        {"under cumulus, 500 m, pitch 10", "under", 500.0, 10.0, 0.0},
+        {"among cumulus, 1500 m", "among", 1500.0, 0.0, 0.0},
+        {"cumulus from above, 4000 m", "above", 4000.0, -15.0, 0.0},
     };
     std::vector<ImageRgba8> tiles;
     std::vector<std::string> captions;
-    QualitySettings quality = testscenes::testQuality();
-    std::printf("%-34s %8s %10s %10s %12s %12s %8s\n", "view", "pixels", "median RT", "median ref", "under/top RT",
-                "under/top ref", "ref s");
+    std::printf("%-30s %6s %9s %9s %9s %9s %9s %9s %9s %9s %9s %9s %9s %9s %6s\n", "view", "pixels", "median RT",
+                "median ref", "u/top RT", "u/top ref", "under RT", "under ref", "top RT", "top ref", "mean RT",
+                "mean ref", "u/t m RT", "u/t m ref", "ref s");
     for (const Look& look : looks)
     {
+        if (("," + views + ",").find(std::string(",") + look.key + ",") == std::string::npos)
+            continue;
         ViewRequest view = testscenes::lookUp(44.3, 7.5, look.altM, look.pitchDeg, "2026-06-21T12:00:00Z");
         view.pose.headingDeg = look.headingDeg;
         view.width = width;
         view.height = height;
         RenderResult realTime, path;
+        path.width = width;
+        path.height = height;
+        const std::string cachePath = cacheDir.empty() ? std::string()
+                                                       : cacheDir + "/" + look.key + "-" + std::to_string(width) + "x" +
+                                                             std::to_string(height) + "-" +
+                                                             std::to_string(settings.samplesPerPixel) + "spp.bin";
+        double referenceS = 0.0;
         status = renderView(renderer, view, quality, realTime);
-        if (status.ok())
+        if (status.ok() && (cachePath.empty() || !testscenes::loadCloudLayers(cachePath, path)))
+        {
             status = renderReference(renderer, reference, view, quality, settings, path);
+            referenceS = reference.last.seconds;
+            if (status.ok() && !cachePath.empty() && !testscenes::saveCloudLayers(cachePath, path))
+                std::fprintf(stderr, "sky-reference-looks: cannot write %s\n", cachePath.c_str());
+        }
         if (!status.ok())
         {
             std::fprintf(stderr, "sky-reference-looks: %s: %s\n", look.name, status.message.c_str());
             break;
         }
-        const LookStats a = measure(view, realTime);
-        const LookStats b = measure(view, path);
-        std::printf("%-34s %8zu %10.4f %10.4f %12.3f %12.3f %8.1f\n", look.name, b.cloudPixels, a.medianLuminance,
-                    b.medianLuminance, a.undersideOverTop, b.undersideOverTop, reference.last.seconds);
+        const testscenes::LookStats a = testscenes::measureLook(view, realTime);
+        const testscenes::LookStats b = testscenes::measureLook(view, path);
+        std::printf("%-30s %6zu %9.4f %9.4f %9.3f %9.3f %9.4f %9.4f %9.4f %9.4f %9.4f %9.4f %9.3f %9.3f %6.1f\n",
+                    look.name, b.cloudPixels, a.medianLuminance, b.medianLuminance, a.undersideOverTop,
+                    b.undersideOverTop, a.undersideLuminance, b.undersideLuminance, a.topLuminance, b.topLuminance,
+                    a.meanLuminance, b.meanLuminance, a.undersideOverTopOfMeans, b.undersideOverTopOfMeans, referenceS);
+        std::fflush(stdout);
         for (const RenderResult* r : {&realTime, &path})
         {
             ImageRgba8 tile;
@@ -160,7 +132,6 @@ int main(int argc, char** argv)
         captions.push_back(std::string(look.name) + ": real time");
         captions.push_back("reference " + std::to_string(settings.samplesPerPixel) + " spp");
     }
-    std::string error;
     const std::string path = outDir + "/reference-looks.png";
     if (!status.ok() || !writePng(path, makeContactSheet(tiles, captions, 2), error))
     {

@@ -6,16 +6,22 @@
 // How the seam is measured: the views are level (pitch and roll 0), so row j of channel A's last
 // column and row j of channel B's first column are rays at the same elevation, symmetric about the
 // shared edge (heading 20), 0.29 degrees apart. The seam difference S is the mean absolute
-// difference of the cloud image (rgb and alpha, divided by the peak of the two images) between those
-// two columns. It is compared with I, the same difference between neighbouring columns (0.33 degrees
+// difference of the cloud image between those two columns, rgb over the radiance scale of the third
+// view's full render (image_compare.h radianceScale: so that a brighter light does not read as a seam)
+// and alpha over 1. It is compared with I, the same difference between neighbouring columns (0.33 degrees
 // apart) of a full render of a third view looking along the seam (heading 20), averaged over the 8
 // pairs around its middle: what two neighbouring columns differ by anywhere. One column pair is a
-// noisy statistic (72 rows; ~30% from pose to pose), hence the tolerance S <= 1.5 I, or 3.5 % of the
-// peak where the picture is so smooth that 1.5 I is less, for full renders (nothing tied to the screen)
+// noisy statistic (72 rows; ~30% from pose to pose), hence the tolerance S <= 1.5 I, or 0.05 where the
+// picture is so smooth that 1.5 I is less, for full renders (nothing tied to the screen)
 // and for the reprojected channels after flying the same path (still, cruise, turn), each channel on its
 // own history as on its own machine. (Before the march's bisection fix, I was 0.031-0.033
 // and the tolerance 0.047-0.049; the smoother clouds since give I 0.0055-0.008 and S <= 0.030, the 60
-// deg/s turn's reprojected seam, where the channel turning away from the seam has no history at it.)
+// deg/s turn's reprojected seam, where the channel turning away from the seam has no history at it.
+// Those are shares of the largest channel, alpha's 1, and the floor was 0.035; on the radiance scale the
+// same images measure 1.44x more at the turn's seam (earlier light, octave contribution 0.5: S 0.0524 ->
+// 0.0757), hence 0.05. The finer cloud shapes since put the turn's reprojected seam at 5 I whatever the
+// light: S 0.076 / 0.064 (symmetric / wall channels) under the earlier light, 0.088 / 0.077 under the
+// light tuned to the path-traced reference.)
 // lavapipe, validation on, 128x72, test quality, above a stratocumulus deck (the deck below the
 // horizon, sky above).
 //
@@ -84,29 +90,23 @@ ViewRequest wallCentre()
     return v;
 }
 
-double peak(const RenderResult& r)
-{
-    double p = 0.0;
-    for (uint16_t h : r.cloudRgbaHalf)
-        p = std::max(p, double(glm::unpackHalf1x16(h)));
-    return p;
-}
-
-// Mean absolute cloud-image difference between column xa of a and column xb of b, over the peak.
-double columnDifference(const RenderResult& a, uint32_t xa, const RenderResult& b, uint32_t xb)
+// Mean absolute cloud-image difference between column xa of a and column xb of b: rgb over `rgbScale`
+// (radianceScale of a full render), alpha over 1.
+double columnDifference(const RenderResult& a, uint32_t xa, const RenderResult& b, uint32_t xb, double rgbScale)
 {
     double sum = 0.0;
     for (uint32_t y = 0; y < a.height; ++y)
         for (size_t c = 0; c < 4; ++c)
             sum += std::fabs(double(glm::unpackHalf1x16(a.cloudRgbaHalf[(size_t(y) * a.width + xa) * 4 + c])) -
-                             double(glm::unpackHalf1x16(b.cloudRgbaHalf[(size_t(y) * b.width + xb) * 4 + c])));
-    return sum / (4.0 * a.height) / std::max(peak(a), peak(b));
+                             double(glm::unpackHalf1x16(b.cloudRgbaHalf[(size_t(y) * b.width + xb) * 4 + c]))) /
+                   (c < 3 ? rgbScale : 1.0);
+    return sum / (4.0 * a.height);
 }
 
 // Channel `a`'s cloud image in column x against `resampled` (another view's, resampleCloud'ed onto a's
 // pixels: bilinear at a's rays): the mean absolute difference over the rows whose ray falls inside the
-// other view (rgb and alpha, over `peakValue`).
-double sameRayDifference(const RenderResult& a, uint32_t x, const Resampled& resampled, double peakValue)
+// other view (rgb over `rgbScale`, alpha over 1).
+double sameRayDifference(const RenderResult& a, uint32_t x, const Resampled& resampled, double rgbScale)
 {
     double sum = 0.0;
     int samples = 0;
@@ -116,10 +116,11 @@ double sameRayDifference(const RenderResult& a, uint32_t x, const Resampled& res
         if (!resampled.valid[p])
             continue;
         for (size_t c = 0; c < 4; ++c)
-            sum += std::fabs(double(glm::unpackHalf1x16(a.cloudRgbaHalf[p * 4 + c])) - double(resampled.cloudRgba[p * 4 + c]));
+            sum += std::fabs(double(glm::unpackHalf1x16(a.cloudRgbaHalf[p * 4 + c])) -
+                             double(resampled.cloudRgba[p * 4 + c])) / (c < 3 ? rgbScale : 1.0);
         ++samples;
     }
-    return samples == 0 ? 1.0 : sum / (4.0 * samples) / peakValue;
+    return samples == 0 ? 1.0 : sum / (4.0 * samples);
 }
 
 class Channels : public GpuFixture
@@ -161,16 +162,17 @@ protected:
             stepPose(vc, motion);  // the view along the seam at the same last pose
         RenderResult fa = renderOk(va, testQuality()), fb = renderOk(vb, testQuality());
         RenderResult fc = renderOk(vc, testQuality());
-        double seam = columnDifference(a, w - 1, b, 0);
-        double seamFull = columnDifference(fa, w - 1, fb, 0);
+        const double scale = radianceScale(fc);
+        double seam = columnDifference(a, w - 1, b, 0, scale);
+        double seamFull = columnDifference(fa, w - 1, fb, 0, scale);
         double inner = 0.0;
         for (uint32_t x = w / 2 - 4; x < w / 2 + 4; ++x)
-            inner += columnDifference(fc, x, fc, x + 1) / 8.0;
+            inner += columnDifference(fc, x, fc, x + 1, scale) / 8.0;
         const glm::dvec2 reprojectedDb(psnrCloud(a, fa), psnrCloud(b, fb));
         std::printf("%s: seam S %.4f reprojected, %.4f full renders; neighbouring columns along the seam I "
-                    "%.4f (share of the peak); reprojected against full: %.2f / %.2f dB\n",
-                    name, seam, seamFull, inner, reprojectedDb.x, reprojectedDb.y);
-        double tolerance = std::max(1.5 * inner, 0.035);
+                    "%.4f (share of the radiance scale %.3f); reprojected against full: %.2f / %.2f dB\n",
+                    name, seam, seamFull, inner, scale, reprojectedDb.x, reprojectedDb.y);
+        double tolerance = std::max(1.5 * inner, 0.05);
         EXPECT_LE(seamFull, tolerance) << "full renders: a seam from something tied to the screen";
         EXPECT_LE(seam, tolerance) << "reprojection adds a seam";
         return reprojectedDb;
@@ -262,7 +264,9 @@ TEST_F(Channels, SameInputsGiveIdenticalBytesOnAnotherRenderer)
 // on its edge (heading 20) at the same rays. That view is rendered at 4x the resolution so that sampling
 // it bilinearly at the channel's rays adds little (at 1x, a quarter of a row of vertical offset across the
 // deck's horizon alone makes 0.007 of the peak). Measured: 0.0022 at the same rays; neighbouring columns
-// (I, as in the seam tests) 0.006. Compared column for column with a view of the channel's size, the
+// (I, as in the seam tests) 0.006 (shares of the largest channel, before the finer cloud shapes; with them,
+// on the radiance scale, 0.0067 and 0.0091 under the earlier light, 0.0073 and 0.0098 under the light tuned
+// to the path-traced reference: over 0.5 I whatever the light). Compared column for column with a view of the channel's size, the
 // two differ by 0.0155 (the "a|c" difference of earlier notes), but those are not the same rays: at the
 // edge of a level view a row's rays are ~6 % lower than at its centre (elevation
 // atan(y tanY / sqrt(1 + (x tanX)^2))).
@@ -275,17 +279,18 @@ TEST_F(Channels, AChannelsEdgeMatchesACentredViewAtTheSameRays)
     RenderResult ff = renderOk(fine, testQuality());
     const uint32_t w = va.width;
     const Resampled fineAtChannelRays = resampleCloud(ff, fine, va);
+    const double scale = radianceScale(fc);
     double sameRays = 0.0, columnForColumn = 0.0, inner = 0.0;
     for (uint32_t k = 0; k < 4; ++k)
     {
-        sameRays += sameRayDifference(fa, w - 1 - k, fineAtChannelRays, std::max(peak(fa), peak(ff))) / 4.0;
-        columnForColumn += columnDifference(fa, w - 1 - k, fc, w / 2 - 1 - k) / 4.0;
+        sameRays += sameRayDifference(fa, w - 1 - k, fineAtChannelRays, scale) / 4.0;
+        columnForColumn += columnDifference(fa, w - 1 - k, fc, w / 2 - 1 - k, scale) / 4.0;
     }
     for (uint32_t x = w / 2 - 4; x < w / 2 + 4; ++x)
-        inner += columnDifference(fc, x, fc, x + 1) / 8.0;
+        inner += columnDifference(fc, x, fc, x + 1, scale) / 8.0;
     std::printf("edge columns against the centred view: %.4f at the same rays, %.4f column for column; "
-                "neighbouring columns I %.4f (share of the peak)\n",
-                sameRays, columnForColumn, inner);
+                "neighbouring columns I %.4f (share of the radiance scale %.3f)\n",
+                sameRays, columnForColumn, inner, scale);
     EXPECT_LE(sameRays, 0.5 * inner);
     EXPECT_GT(columnForColumn, 2.0 * sameRays);
 }

@@ -48,45 +48,59 @@ double maxCloudDifference(const RenderResult& a, const RenderResult& b)
 }  // namespace
 
 // Renders `view` with every cone sample marched and with the light volume (160 m texels), and checks
-// that the volume was read (the images differ) and that they agree to `minPsnrDb` (cloud image).
+// that the volume was read (the images differ) and that they agree to `minPsnrDb` (cloud image, on the
+// marched image's own radiance scale: psnrCloudScaled, so that a brighter light does not read as a worse
+// volume).
+//
+// The limits keep the margins the earlier limits had under the earlier light (octave contribution 0.5, no
+// diffuse remainder, sky ambient 0.35 at the base, full ground bounce) on these cloud shapes. Against the
+// largest channel (alpha's 1 under that light) it measured 38.3 / 47.3 / 47.8 dB over limits 36 / 40 / 45:
+// margins 2.3 / 7.3 / 2.8 dB. On the radiance scale (0.59 / 0.54 / 0.73) it measures 33.8 / 42.0 / 45.0 dB,
+// so the limits are 31.5 / 34.7 / 42.3 dB. The light tuned to the path-traced reference doubles the
+// radiance (scale 1.44 / 1.41 / 1.77), which against a fixed peak cost 4-8 dB with nothing worse.
 void LightVolume::expectMatchesMarchedCone(const WeatherSnapshot& weather, const ViewRequest& view,
                                            uint32_t minOpaquePixels, double minPsnrDb, const char* label)
 {
     RenderResult marched = render(weather, view, 0.0);
     RenderResult fromVolume = render(weather, view, 160.0);
     ASSERT_GT(cloudStats(marched).opaquePixels, minOpaquePixels);
-    double psnr = psnrCloud(fromVolume, marched);
+    double psnr = psnrCloudScaled(fromVolume, marched);
     double worst = maxCloudDifference(fromVolume, marched);
-    std::printf("light volume vs marched cone, %s: PSNR %.2f dB, max difference %.4f\n", label, psnr, worst);
+    std::printf("light volume vs marched cone, %s: PSNR %.2f dB on the radiance scale %.3f (%.2f dB against the "
+                "largest channel), max difference %.4f\n",
+                label, psnr, radianceScale(marched), psnrCloud(fromVolume, marched), worst);
     EXPECT_GT(worst, 0.0) << "the volume was not read";
     EXPECT_GE(psnr, minPsnrDb);
 }
 
-// Scattered cumulus 1-5 km from an eye below them, sun at 35 degrees. Measured on lavapipe (cloud image):
-// 38.6 dB; 33.6 dB when the volume held optical depth instead of transmittance (too dark where texels
-// straddle a cloud edge).
+// Scattered cumulus 1-5 km from an eye below them, sun at 35 degrees. Measured on lavapipe: 32.8 dB (33.8
+// under the earlier light); against the largest channel, 33.6 dB when the volume held optical depth instead
+// of transmittance (too dark where texels straddle a cloud edge; 38.6 with transmittance then).
 TEST_F(LightVolume, CloudsSeenFromBelowMatchTheMarchedCone)
 {
     ViewRequest v = lookUp(45.0, 7.0, 200.0, 35.0, "2026-06-21T12:00:00Z");
     v.width = 160;
     v.height = 90;
     v.unixTimeS = timeOfSunElevation(45.0, 7.0, "2026-06-21T12:00:00Z", 35.0);
-    expectMatchesMarchedCone(uniformLayer(0.5f, CloudType::Cumulus, 1200.0f, 2800.0f), v, 500u, 36.0, "from below");
+    expectMatchesMarchedCone(uniformLayer(0.5f, CloudType::Cumulus, 1200.0f, 2800.0f), v, 500u, 31.5, "from below");
 }
 
 // A deck seen from above (an eye at 4000 m over a stratocumulus deck 2-3 km below): the long sample of
-// the top layer's cone climbs out of the shell, the volume's top levels must agree. Measured: 43.3 dB
-// (40.5 with optical depth).
+// the top layer's cone climbs out of the shell, the volume's top levels must agree. Measured: 40.2 dB (42.0
+// under the earlier light; against the largest channel 43.3 then, 40.5 with optical depth).
 TEST_F(LightVolume, DeckSeenFromAboveMatchesTheMarchedCone)
 {
-    expectMatchesMarchedCone(deckBelowWeather(), deckFromAboveView(), 2000u, 40.0, "from above");
+    expectMatchesMarchedCone(deckBelowWeather(), deckFromAboveView(), 2000u, 34.7, "from above");
 }
 
 // The far cascade (320 m texels, light_volume.h) lights what lies 7.7-15.4 km from the eye: a deck 8-12 km
 // below an eye at 10 km, seen 10 degrees down, against every cone sample marched, and against the volume
-// without its cascade (which the view must read: the images differ). Measured on lavapipe: 49.8 dB (42.0
-// with 640 m texels); without
-// the cascade the picture is the marched cone's exactly (all of the deck lies beyond the first 7.7 km).
+// without its cascade (which the view must read: the images differ). Measured on lavapipe: 39.2 dB, under
+// the earlier light 45.0 (against the largest channel 49.8 on the earlier shapes, 42.0 with 640 m texels);
+// without the cascade the picture is the marched cone's exactly (all of the deck lies beyond the first 7.7
+// km). The light tuned to the reference is 5-6 dB further from the marched cone whatever the texel (near
+// texels 120 / 200 / 240 m: 55.2 / 42.6 / 40.6 dB under the earlier light, 49.0 / 37.3 / 35.8 now), more
+// than its brightness explains: it fails the limit kept from the earlier light.
 TEST_F(LightVolume, FarCascadeMatchesTheMarchedCone)
 {
     ViewRequest v = lookUp(45.0, 7.0, 10000.0, -10.0, "2026-06-21T12:00:00Z");
@@ -94,18 +108,26 @@ TEST_F(LightVolume, FarCascadeMatchesTheMarchedCone)
     v.height = 90;
     v.unixTimeS = timeOfSunElevation(45.0, 7.0, "2026-06-21T12:00:00Z", 30.0);
     WeatherSnapshot w = deckBelowWeather();
-    RenderResult marched = render(w, v, 0.0);
-    RenderResult cascade = render(w, v, 160.0);
     setWeather(*renderer, w);
-    RenderTuning nearVolumeOnly;
+    // Every cone marched in full: beyond 15 km from the eye (most of this deck) a march without the volume
+    // takes earlier cones' far samples (RenderTuning::coneTailReuseM), which the cascade holds here.
+    RenderTuning everyCone;
+    everyCone.coneTailReuseM = 0.0;
+    QualitySettings q = testQuality();
+    q.lightVolumeTexelM = 0.0;
+    RenderResult marched = renderTuned(v, q, everyCone);
+    q.lightVolumeTexelM = 160.0;
+    RenderResult cascade = renderTuned(v, q, everyCone);
+    RenderTuning nearVolumeOnly = everyCone;
     nearVolumeOnly.lightVolumeFarCascade = false;
-    RenderResult nearOnly = renderTuned(v, testQuality(), nearVolumeOnly);
+    RenderResult nearOnly = renderTuned(v, q, nearVolumeOnly);
     ASSERT_GT(cloudStats(marched).opaquePixels, 2000u);
-    double psnr = psnrCloud(cascade, marched);
-    std::printf("light volume with its far cascade vs marched cone, deck 8-12 km away: PSNR %.2f dB "
-                "(without the cascade %.2f dB)\n", psnr, psnrCloud(nearOnly, marched));
+    double psnr = psnrCloudScaled(cascade, marched);
+    std::printf("light volume with its far cascade vs marched cone, deck 8-12 km away: PSNR %.2f dB on the "
+                "radiance scale %.3f (%.2f dB against the largest channel; without the cascade %.2f dB)\n",
+                psnr, radianceScale(marched), psnrCloud(cascade, marched), psnrCloudScaled(nearOnly, marched));
     EXPECT_GT(maxCloudDifference(cascade, nearOnly), 0.0) << "the cascade was not read";
-    EXPECT_GE(psnr, 45.0);
+    EXPECT_GE(psnr, 42.3);
 }
 
 // The volume is kept while a frame's inputs are those it was built from, and built again when they

@@ -188,8 +188,11 @@ TEST_F(GpuRender, DeepSamplesWithoutDetailChangeLittle)
 
 // The march's steps inside a cloud (QualitySettings::maxStepOpticalDepth 1: at most one optical depth)
 // against steps of 0.2 with 4x the step budget, close to the converged integral: a deck from above and
-// a sunlit cumulus cell from the side. Measured 36.0 and 42.2 dB (cloud radiance); the limit at 1
-// without its floors for thin skin (render_types.h) gave 40.5 and 39.4 with a 15 % darker sunlit side.
+// a sunlit cumulus cell from the side. Measured 31.9 and 37.9 dB (cloud radiance); 36.0 and 42.2 before the
+// light was matched to the path-traced reference (cloud_lighting.glsl): its diffuse octave remainder keeps
+// light deep inside the clouds, which the coarser steps integrate less exactly than the skin alone (peak
+// radiance 1.7 in the deck, so not just a brighter image). The limit at 1 without its floors for thin skin
+// (render_types.h) gave 40.5 and 39.4 with a 15 % darker sunlit side, under the earlier light.
 TEST_F(GpuRender, CloudStepsConvergeOnFinerSteps)
 {
     QualitySettings fine = testQuality();
@@ -205,8 +208,8 @@ TEST_F(GpuRender, CloudStepsConvergeOnFinerSteps)
     cellView.unixTimeS = timeOfSunElevation(45.0, 7.0, "2026-06-21T14:00:00Z", 25.0);
     double cellPsnr = psnrCloud(render(cell, cellView), render(cell, cellView, fine));
     std::printf("against 5x finer cloud steps: deck %.2f dB, cumulus cell %.2f dB\n", deckPsnr, cellPsnr);
-    EXPECT_GE(deckPsnr, 33.0);
-    EXPECT_GE(cellPsnr, 38.0);
+    EXPECT_GE(deckPsnr, 29.0);
+    EXPECT_GE(cellPsnr, 34.0);
 }
 
 // Empty-space skipping (shaders/shared/column_bounds.h) changes only where the search samples, never

@@ -144,10 +144,19 @@ TEST_F(Reprojection, TeleportLeavesNoPixelOfTheOldView)
 }
 
 // A pan of 2 degrees of heading per frame (at 128x72 and 60 degrees, ~2.8 pixels per frame) after 16
-// still frames. Measured on the tone-mapped display (whole frame, peak 255) and on the cloud image.
-// The cloud-image bound is lower because the full-resolution reference itself is not stable under
+// still frames. Measured on the tone-mapped display (whole frame, peak 255) against the same pose rendered
+// without history, and on the cloud image (on the reference's radiance scale, psnrCloudScaled).
+// The cloud-image bound is low because the full-resolution reference itself is not stable under
 // sub-pixel motion at this size: two full renders 0.3 degrees apart differ by ~23 dB (cloud image),
 // from screen-space march jitter and cloud detail finer than a pixel.
+// Both bounds are independent of the picture's brightness (a brighter light costs a fixed display peak and
+// a fixed cloud peak several dB with nothing reprojected worse) and keep the margins of the earlier bounds
+// under the earlier light (octave contribution 0.5, no diffuse remainder) on these shapes: worst display
+// 30.9 dB over a bound of 30 (0.9), no history 28.4, so the pan must beat no history by 2.5 - 0.9 = 1.6 dB;
+// worst cloud 23.5 dB against the largest channel over 20 (3.5), 21.0 on the radiance scale, so 17.5.
+// Measured with the light tuned to the reference: 2.1 dB over no history (25.2 / 23.1), cloud 19.1 dB.
+// With history dropped before every frame of the pan both fail: worst display 1.3 dB under no history at
+// the last pose (21.8 / 23.1; 27.3 / 28.4 under the earlier light), cloud 15.6 dB (17.1).
 TEST_F(Reprojection, SlowPanStaysCloseToFullResolution)
 {
     ViewRequest v = reprojectionView();
@@ -162,13 +171,13 @@ TEST_F(Reprojection, SlowPanStaysCloseToFullResolution)
         frame = render(v, reprojectedQuality());
         EXPECT_TRUE(lastHistoryDropReason(*renderer).empty()) << lastHistoryDropReason(*renderer);
         full = render(v, testQuality());
-        double pc = psnrCloud(frame, full), pd = psnrDisplay(frame, full);
-        std::printf("pan frame %d: cloud PSNR %.1f dB, display PSNR %.1f dB\n", k, pc, pd);
+        double pc = psnrCloudScaled(frame, full), pd = psnrDisplay(frame, full);
+        std::printf("pan frame %d: cloud PSNR %.1f dB on the radiance scale (%.1f dB against the largest channel), "
+                    "display PSNR %.1f dB\n", k, pc, psnrCloud(frame, full), pd);
         worstDisplay = std::min(worstDisplay, pd);
         worstCloud = std::min(worstCloud, pc);
     }
-    EXPECT_GE(worstDisplay, 30.0);
-    EXPECT_GE(worstCloud, 20.0);
+    EXPECT_GE(worstCloud, 17.5);
     // The same last frame without history (same march phase): reprojection must be what makes it good.
     // Without history the fresh pixels are interpolated (measured 29.5 dB display, 27.7 dB when they
     // were copied as 4x4 blocks), so the margin is 2 dB, not the 3.9 dB it was.
@@ -177,8 +186,10 @@ TEST_F(Reprojection, SlowPanStaysCloseToFullResolution)
     renderer->reconstruct.reprojection.frameIndex = last;
     RenderResult fresh = render(v, reprojectedQuality());
     double freshDisplay = psnrDisplay(fresh, full);
-    std::printf("last pose without history: cloud PSNR %.1f dB, display PSNR %.1f dB\n", psnrCloud(fresh, full),
-                freshDisplay);
+    std::printf("last pose without history: cloud PSNR %.1f dB on the radiance scale, display PSNR %.1f dB; "
+                "worst of the pan %.1f / %.1f dB\n",
+                psnrCloudScaled(fresh, full), freshDisplay, worstCloud, worstDisplay);
+    EXPECT_GE(worstDisplay, freshDisplay + 1.6) << "the worst frame of the pan";
     EXPECT_GT(psnrDisplay(frame, full), freshDisplay + 1.5);
 }
 
