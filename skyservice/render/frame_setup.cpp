@@ -47,6 +47,14 @@ bool validateNoisePeriods(const QualitySettings& q, std::string& error)
                     " m (16 high-cloud periods): clouds would jump when the offsets wrap";
             return false;
         }
+    // Stratocumulus rolls read the base noise 1.5 times faster along one axis (cloud_shape.glsl
+    // ROLL_CELL_SQUEEZE): 1.5 modulus must hold whole base periods.
+    if (!divides(q.baseNoisePeriodM, 1.5 * m))
+    {
+        error = "base noise period " + std::to_string(q.baseNoisePeriodM) + " m does not divide 1.5 x " +
+                std::to_string(m) + " m (16 high-cloud periods): stratocumulus would jump when the offsets wrap";
+        return false;
+    }
     return true;
 }
 
