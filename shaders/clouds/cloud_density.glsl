@@ -62,13 +62,11 @@ WeatherLookup weatherLookup(vec2 mapPosM)
 }
 
 // The amplitude (m) of largeScaleWarp (large_scale.glsl) on the base noise lookup, a smooth warp so that
-// the 8 km tile never lines up with itself: near 44 N
-// 8.5 E the lattice vector (-8, 0, 8) km lies in the horizontal plane, and without a warp the shadow map
-// correlated 0.82 with itself 11 km north (tests/gpu/test_cloud_shapes.cpp). Sums of sines whose wave
-// vectors are whole cycles per offset modulus along each noise-frame axis (wavelengths 16-24 km), so
-// the warp repeats with the offsets and nothing jumps when they wrap; cells move by up to 1 km along
-// each axis, by about as much relative to cells 10 km away (shadow-map autocorrelation beyond 5 km 0.18; 0.58
-// with wavelengths of 50-66 km and 400 m). Computed, not read from the large-scale lookup as it was
+// the 8 km tile never lines up with itself: near 44 N 8.5 E the lattice vector (-8, 0, 8) km lies in the
+// horizontal plane, and without a warp the shadow map correlated 0.82 with itself 11 km north
+// (tests/gpu/test_cloud_shapes.cpp). Cells move by up to 1 km along each axis, by about as much relative
+// to cells 10 km away (shadow-map autocorrelation beyond 5 km 0.18; 0.58 with wavelengths of 50-66 km and
+// 400 m). Computed, not read from the large-scale lookup as it was
 // first: lavapipe filters an 8-bit texture to 8 bits, so the warp jumped by 1/255 of its range (31 m)
 // along surfaces ~100 m apart and broke sharp cloud edges into steps that resampling cannot follow
 // (tests/gpu/test_channels.cpp AChannelsEdgeMatchesACentredViewAtTheSameRays: 0.0041 of the peak at
@@ -163,6 +161,12 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         bool rolls = !anvilSlab && rollWavesPerModulus(cloudType) > 0.0f;
         if (rolls)
             lookupPos.z *= ROLL_CELL_SQUEEZE;
+        // The rolls' phase is taken at the column's base point (no tilt with height but the shear's), bent by
+        // the warp so that rolls meander and their spacing varies; computed before the fetch, so that only
+        // the wave lives across it.
+        float wave = rolls ? rollWave(noisePos.z - radialNoise.z * (h - base) + warp.z,
+                                      rollWavesPerModulus(cloudType), radPerM, radialNoise.z)
+                           : 1.0f;
         float shape = baseShapeAt(lookupPos, noisePos, radPerM);
         float densityScale = genusDensityScale(cloudType);
         if (anvilSlab)
@@ -176,11 +180,6 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         }
         else
         {
-            // The rolls' phase is taken at the column's base point (no tilt with height but the shear's),
-            // bent by the warp so that rolls meander and their spacing varies.
-            float wave = rolls ? rollWave(noisePos.z - radialNoise.z * (h - base) + warp.z,
-                                          rollWavesPerModulus(cloudType), radPerM, radialNoise.z)
-                               : 1.0f;
             shape *= cloudHeightProfileRolled(cloudType, hf, rollTopScale(wave));
             coverage *= coverageHeightFactor(cloudType, hf);
             if (rolls)

@@ -237,6 +237,8 @@ TEST_F(CloudShapes, ShadowMapDoesNotRepeat)
 // Stratocumulus lie in rolls that run east-west (cloud_shape.glsl rollWavesPerModulus): along a roll (east)
 // the shadow map stays correlated where across the rolls (north), half a roll's wave away, it is
 // anticorrelated. Isotropic cells (what cumulus keep, the control) correlate about as much both ways.
+// Measured at 1.5-2.5 km: stratocumulus 0.49 east, -0.35 north (0.05, -0.02 before the rolls); cumulus
+// 0.05, -0.03.
 TEST_F(CloudShapes, StratocumulusLiesInRolls)
 {
     constexpr uint32_t kSize = 128;
