@@ -237,7 +237,7 @@ TEST_F(CloudShapes, ShadowMapDoesNotRepeat)
 // Stratocumulus lie in rolls that run east-west (cloud_shape.glsl rollWavesPerModulus): along a roll (east)
 // the shadow map stays correlated where across the rolls (north), half a roll's wave away, it is
 // anticorrelated. Isotropic cells (what cumulus keep, the control) correlate about as much both ways.
-// Measured at 1.5-2.5 km: stratocumulus 0.49 east, -0.35 north (0.05, -0.02 before the rolls); cumulus
+// Measured at 1.5-2.5 km: stratocumulus 0.16 east, -0.12 north (0.05, -0.02 before the rolls); cumulus
 // 0.05, -0.03.
 TEST_F(CloudShapes, StratocumulusLiesInRolls)
 {
@@ -266,8 +266,8 @@ TEST_F(CloudShapes, StratocumulusLiesInRolls)
     const Anisotropy cu = measure(CloudType::Cumulus);
     std::printf("correlation at 1.5-2.5 km east, north: stratocumulus %.3f, %.3f; cumulus %.3f, %.3f\n", sc.east,
                 sc.north, cu.east, cu.north);
-    EXPECT_GT(sc.east - sc.north, 0.4) << "stratocumulus: no rolls along the east";
-    EXPECT_LT(sc.north, 0.0) << "stratocumulus: no gap between the rolls";
+    EXPECT_GT(sc.east - sc.north, 0.2) << "stratocumulus: no rolls along the east";
+    EXPECT_LT(sc.north, -0.07) << "stratocumulus: no gap between the rolls";
     EXPECT_LT(std::fabs(cu.east - cu.north), 0.2) << "cumulus cells are not isotropic: the measure is biased";
 }
 

@@ -389,14 +389,14 @@ TEST(CloudMath, RollsAndWarpRepeatWithTheOffsetsAndKeepTheCoverage)
     EXPECT_EQ(glsl::rollWavesPerModulus(CLOUD_TYPE_STRATUS), 0.0f);
     // Poleward of 70 degrees the rolls fade out.
     EXPECT_EQ(glsl::rollWave(1234.0f, 128.0f, radPerM, 0.99f), 0.0f);
-    // Over a wave the coverage averages to c (crests below ROLL_CREST_COVERAGE), swings by 0.9 min(c, 1 - c).
+    // Over a wave the coverage averages to c (crests below ROLL_CREST_COVERAGE), swings by ROLL_STRENGTH min(c, 1 - c).
     for (float c : {0.1f, 0.3f, 0.5f})
     {
         double mean = 0;
         for (int i = 0; i < 360; ++i)
             mean += double(glsl::rolledCoverage(c, float(std::cos(double(i) * M_PI / 180.0)))) / 360.0;
         EXPECT_NEAR(mean, double(c), 1e-4) << c;
-        EXPECT_NEAR(glsl::rolledCoverage(c, -1.0f), c - 0.9f * std::min(c, 1.0f - c), 1e-6f);
+        EXPECT_NEAR(glsl::rolledCoverage(c, -1.0f), c - glsl::ROLL_STRENGTH * std::min(c, 1.0f - c), 1e-6f);
     }
     EXPECT_FLOAT_EQ(glsl::rolledCoverage(0.9f, 1.0f), glsl::ROLL_CREST_COVERAGE);
     EXPECT_FLOAT_EQ(glsl::rolledCoverage(0.99f, 1.0f), 0.99f);  // an overcast deck stays closed on the crests
