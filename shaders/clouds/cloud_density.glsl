@@ -3,6 +3,7 @@
 // Included by cloud passes after the FrameBlock and the texture bindings.
 
 #include "shaders/lib/cloud_extent.glsl"
+#include "shaders/lib/large_scale.glsl"
 
 // Extinction relative to cloudLook.x per genus: stratiform decks are optically thinner per metre.
 float genusDensityScale(int cloudType)
@@ -60,35 +61,25 @@ WeatherLookup weatherLookup(vec2 mapPosM)
     return w;
 }
 
-// A smooth warp of the regular lookup (m), so that the 8 km tile never lines up with itself: near 44 N
-// 8.5 E the lattice vector (-8, 0, 8) km lies in the horizontal plane, and without a warp the shadow map
-// correlated 0.82 with itself 11 km north (tests/gpu/test_cloud_shapes.cpp). Sums of sines whose wave
-// vectors are whole cycles per offset modulus along each noise-frame axis (wavelengths 16-24 km), so
-// the warp repeats with the offsets and nothing jumps when they wrap; cells move by up to 1 km along
-// each axis, by about as much relative to cells 10 km away (shadow-map autocorrelation beyond 5 km 0.18; 0.58
-// with wavelengths of 50-66 km and 400 m). Computed, not read from the large-scale lookup as it was
+// The amplitude (m) of largeScaleWarp (large_scale.glsl) on the base noise lookup, a smooth warp so that
+// the 8 km tile never lines up with itself: near 44 N 8.5 E the lattice vector (-8, 0, 8) km lies in the
+// horizontal plane, and without a warp the shadow map correlated 0.82 with itself 11 km north
+// (tests/gpu/test_cloud_shapes.cpp). Cells move by up to 1 km along each axis, by about as much relative
+// to cells 10 km away (shadow-map autocorrelation beyond 5 km 0.18; 0.58 with wavelengths of 50-66 km and
+// 400 m). Computed, not read from the large-scale lookup as it was
 // first: lavapipe filters an 8-bit texture to 8 bits, so the warp jumped by 1/255 of its range (31 m)
 // along surfaces ~100 m apart and broke sharp cloud edges into steps that resampling cannot follow
 // (tests/gpu/test_channels.cpp AChannelsEdgeMatchesACentredViewAtTheSameRays: 0.0041 of the peak at
 // the same rays, 0.0025 computed, 0.0023 without any warp).
 const float BASE_NOISE_WARP_M = 500.0f;
 
-vec3 largeScaleWarp(vec3 p, float radPerM)
+// Base shape from the Perlin-Worley noise (Schneider: remap(R, lowFreqFBM - 1, 1, 0, 1)) at `lookupPos`
+// (the noise-frame position, already warped by largeScaleWarp), where largeScaleFbm (cloud_shape.glsl) at
+// `largePos` (the unslid position: the same up a column) gives BASE_SHAPE_LARGE_WEIGHT of the FBM, so cloud
+// fraction and cell size vary over tens of kilometres.
+float baseShapeAt(vec3 lookupPos, vec3 largePos, float radPerM)
 {
-    vec3 a = vec3(dot(p, vec3(13.0f, 9.0f, 0.0f)), dot(p, vec3(0.0f, 11.0f, 17.0f)), dot(p, vec3(19.0f, 0.0f, 8.0f)));
-    vec3 b = vec3(dot(p, vec3(0.0f, 17.0f, 12.0f)), dot(p, vec3(14.0f, 0.0f, 19.0f)), dot(p, vec3(9.0f, 15.0f, 11.0f)));
-    return BASE_NOISE_WARP_M *
-           (sin(a * radPerM + vec3(1.9f, 3.7f, 6.0f)) + sin(b * radPerM + vec3(3.3f, 0.5f, 4.6f)));
-}
-
-// Base shape from the Perlin-Worley noise (Schneider: remap(R, lowFreqFBM - 1, 1, 0, 1)) at `noisePos`,
-// warped by largeScaleWarp at `largePos` (the unslid position: the warp is the same up a column), where
-// largeScaleFbm (cloud_shape.glsl) gives BASE_SHAPE_LARGE_WEIGHT of the FBM, so cloud fraction and cell
-// size vary over tens of kilometres.
-float baseShapeAt(vec3 noisePos, vec3 largePos)
-{
-    float radPerM = 6.2831853f / (float(NOISE_OFFSET_MODULUS_HIGH_PERIODS) * frame.noiseScale.w);
-    vec4 n = textureLod(baseNoise, (noisePos + largeScaleWarp(largePos, radPerM)) / frame.noiseScale.x, 0.0f);
+    vec4 n = textureLod(baseNoise, lookupPos / frame.noiseScale.x, 0.0f);
     float lowFreqFbm = mix(dot(n.yzw, vec3(0.625f, 0.25f, 0.125f)), largeScaleFbm(largePos, radPerM),
                            BASE_SHAPE_LARGE_WEIGHT);
     return equalizeBaseShape(remapValue(n.x, lowFreqFbm - 1.0f, 1.0f, 0.0f, 1.0f));
@@ -132,6 +123,7 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         return s;
     vec3 noiseRel = toNoiseFrame(p);
     vec3 radial = normalize(p + vec3(0.0f, 0.0f, frame.earth.y));  // local vertical at p
+    float radPerM = 6.2831853f / (float(NOISE_OFFSET_MODULUS_HIGH_PERIODS) * frame.noiseScale.w);
     float best = 0.0f;
     // Not unrolled: on the H200 the rolled loop made the 1/16 march 1-3 % faster (BENCHMARKS.md, tenth
     // session); the including passes enable GL_EXT_control_flow_attributes.
@@ -161,8 +153,21 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         // clouds are vertically coherent while the detail noise keeps full 3D variation. Written as a
         // shift of p, so nothing cancels in float and the point stays world-fixed.
         float verticalScale = baseNoiseVerticalScale(anvilSlab ? CLOUD_TYPE_CIRROSTRATUS : cloudType);
-        vec3 baseNoisePos = noisePos - toNoiseFrame(radial) * ((h - base) * (1.0f - verticalScale));
-        float shape = baseShapeAt(baseNoisePos, noisePos);
+        vec3 radialNoise = toNoiseFrame(radial);
+        vec3 warp = largeScaleWarp(noisePos, radPerM, BASE_NOISE_WARP_M);
+        vec3 lookupPos = noisePos - radialNoise * ((h - base) * (1.0f - verticalScale)) + warp;
+        // Stratocumulus and altocumulus lie in rolls (cloud_shape.glsl rollWavesPerModulus): along the
+        // earth's axis their cells are narrower, so that they stretch along the rolls.
+        bool rolls = !anvilSlab && rollWavesPerModulus(cloudType) > 0.0f;
+        if (rolls)
+            lookupPos.z *= ROLL_CELL_SQUEEZE;
+        // The rolls' phase is taken at the column's base point (no tilt with height but the shear's), bent by
+        // the warp so that rolls meander and their spacing varies; computed before the fetch, so that only
+        // the wave lives across it.
+        float wave = rolls ? rollWave(noisePos.z - radialNoise.z * (h - base) + warp.z,
+                                      rollWavesPerModulus(cloudType), radPerM, radialNoise.z)
+                           : 1.0f;
+        float shape = baseShapeAt(lookupPos, noisePos, radPerM);
         float densityScale = genusDensityScale(cloudType);
         if (anvilSlab)
         {
@@ -175,8 +180,10 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         }
         else
         {
-            shape *= cloudHeightProfile(cloudType, hf);
+            shape *= cloudHeightProfileRolled(cloudType, hf, rollTopScale(wave));
             coverage *= coverageHeightFactor(cloudType, hf);
+            if (rolls)
+                coverage = rolledCoverage(coverage, wave);
             if (cloudType == CLOUD_TYPE_CUMULONIMBUS)
             {
                 shape = anvilShape(shape, hf, range.z);

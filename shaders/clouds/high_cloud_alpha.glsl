@@ -3,6 +3,10 @@
 // cirrostratus veil, small cirrocumulus cells) at a point of its sphere. Used by the view (high_cloud.glsl)
 // and by the cloud shadow map. Included after cloud_density.glsl.
 
+// Amplitude (m) of each sine of the cirrus warp: 1.5 km bends the fibres by a quarter of a 24 km period
+// without folding them (the warp's gradient stays under 1).
+const float CIRRUS_WARP_M = 1500.0f;
+
 // Alpha (1 - transmittance) of the high layer at `p` (eye ENU, metres, at the high layer's altitude);
 // 0 outside the weather window or where the coverage is below 1%.
 float highCloudAlpha(vec3 p)
@@ -33,11 +37,10 @@ float highCloudAlpha(vec3 p)
     }
     else
     {
-        // Cirrus: fibres stretched along the upper wind, bent by curl noise. A lookup at 8 periods
-        // (192 km, wider than the shadow map) warps them first, so the bands across the wind do not
-        // come back every period in regular rows.
-        vec3 large = textureLod(baseNoise, q / (8.0f * period) + vec3(0.61f, 0.29f, 0.17f), 0.0f).yzw;
-        q += (large - vec3(0.5f)) * (0.6f * period);
+        // Cirrus: fibres stretched along the upper wind, bent by curl noise. A computed warp of 16-24 km
+        // wavelength (large_scale.glsl) moves them first by up to CIRRUS_WARP_M along each axis, so the
+        // fibres of neighbouring periods do not line up in regular rows across the wind.
+        q += largeScaleWarp(q, 6.2831853f / (float(NOISE_OFFSET_MODULUS_HIGH_PERIODS) * period), CIRRUS_WARP_M);
         vec3 along = vec3(normalize(wind + vec2(1e-3f, 0.0f)), 0.0f);
         vec3 alongNoise = toNoiseFrame(along);
         float s0 = dot(q, alongNoise);

@@ -5,7 +5,11 @@
 //   also where layers of very different bases meet clear cells (their interpolation in the weather
 //   window once made bases that no cell has);
 // - no repetition in the shadow map: over the built-in cumulus field, the autocorrelation of the 150 km
-//   map has no peak above 0.3 at any lag beyond 5 km (the 8 km noise tile once showed at 0.5 and more).
+//   map has no peak above 0.3 at any lag beyond 5 km (the 8 km noise tile once showed at 0.5 and more);
+// - stratocumulus rolls: the shadow map of a stratocumulus layer correlates along the rolls (east) far more
+//   than across them (north) at the same lag;
+// - cirrus without rows: the shadow map of a cirrus layer has no autocorrelation peak between 10 and 40 km
+//   (its 24 km texture tile made rows across the wind).
 #include "skyservice/render/renderer.h"
 #include "skyservice/sky/builtin_weather.h"
 #include "tests/gpu/gpu_fixture.h"
@@ -67,6 +71,92 @@ float maxAlpha(const RenderResult& r, uint32_t& nonZero)
         nonZero += a > 0.0f ? 1u : 0u;
     }
     return m;
+}
+
+// Pearson correlation of a square map of `size` texels with itself shifted by (dx, dy) texels (x east, y
+// south: rows run from the north edge).
+double lagCorrelation(const std::vector<float>& t, uint32_t size, int dx, int dy)
+{
+    double sxy = 0, sx = 0, sy = 0, sxx = 0, syy = 0;
+    size_t count = 0;
+    for (int y = std::max(0, -dy); y < int(size) && y + dy < int(size); ++y)
+        for (int x = std::max(0, -dx); x < int(size) && x + dx < int(size); ++x)
+        {
+            const double a = t[size_t(y) * size + size_t(x)];
+            const double b = t[size_t(y + dy) * size + size_t(x + dx)];
+            sx += a;
+            sy += b;
+            sxx += a * a;
+            syy += b * b;
+            sxy += a * b;
+            ++count;
+        }
+    const double n = double(count);
+    const double cov = sxy / n - (sx / n) * (sy / n);
+    const double sa = sxx / n - (sx / n) * (sx / n), sb = syy / n - (sy / n) * (sy / n);
+    return cov / std::sqrt(std::max(sa * sb, 1e-12));
+}
+
+struct CorrelationPeak
+{
+    double rho = -1;
+    double eastM = 0, northM = 0;
+};
+
+// The largest lagCorrelation over the lags longer than minLagM whose east and north parts are at most maxLagM.
+CorrelationPeak largestCorrelation(const std::vector<float>& t, uint32_t size, double texelM, double minLagM,
+                                   double maxLagM)
+{
+    const int maxLag = int(maxLagM / texelM);
+    CorrelationPeak peak;
+    for (int dy = 0; dy <= maxLag; ++dy)
+        for (int dx = -maxLag; dx <= maxLag; ++dx)
+        {
+            const double lagM = std::hypot(dx, dy) * texelM;
+            if (lagM <= minLagM || (dy == 0 && dx < 0))
+                continue;
+            const double rho = lagCorrelation(t, size, dx, dy);
+            if (rho > peak.rho)
+                peak = {rho, dx * texelM, -dy * texelM};
+        }
+    return peak;
+}
+
+double variance(const std::vector<float>& t)
+{
+    double mean = 0;
+    for (float x : t)
+        mean += double(x);
+    mean /= double(t.size());
+    double v = 0;
+    for (float x : t)
+        v += (double(x) - mean) * (double(x) - mean);
+    return v / double(t.size());
+}
+
+// The shadow map (transmittance, kSize^2 texels over `extentM`, north up) of `weather` around the eye at
+// (latDeg, lonDeg), the sun near noon.
+std::vector<float> shadowMapOf(Renderer& renderer, const WeatherSnapshot& weather, double latDeg, double lonDeg,
+                               uint32_t size, double extentM, bool highCloud)
+{
+    setWeather(renderer, weather);
+    ViewRequest v;
+    v.pose = {latDeg, lonDeg, 500.0, 0.0, 10.0, 0.0};
+    v.width = 16;
+    v.height = 8;
+    v.unixTimeS = parseTime("2026-06-21T11:30:00Z");
+    v.shadowMap = true;
+    v.shadowMapSize = size;
+    v.shadowMapExtentM = extentM;
+    QualitySettings q = testQuality();
+    q.maxViewSteps = 16;
+    q.shadowSteps = 24;
+    q.highCloud = highCloud;
+    RenderResult r;
+    const SkyStatus st = renderView(renderer, v, q, r);
+    EXPECT_TRUE(st.ok()) << st.message;
+    EXPECT_EQ(r.shadowTransmittance.size(), size_t(size) * size);
+    return r.shadowTransmittance;
 }
 
 }  // namespace
@@ -133,52 +223,99 @@ TEST_F(CloudShapes, ShadowMapDoesNotRepeat)
     RenderResult r = renderOk(v, q);
     ASSERT_EQ(r.shadowTransmittance.size(), size_t(kSize) * kSize);
     const std::vector<float>& t = r.shadowTransmittance;
-    double mean = 0;
-    for (float x : t)
-        mean += double(x);
-    mean /= double(t.size());
-    double variance = 0;
-    for (float x : t)
-        variance += (double(x) - mean) * (double(x) - mean);
-    variance /= double(t.size());
-    ASSERT_GT(variance, 0.01) << "the map must hold cloud shadows and gaps";
+    ASSERT_GT(variance(t), 0.01) << "the map must hold cloud shadows and gaps";
 
     const double texelM = kExtentM / kSize;
-    const int maxLag = int(33000.0 / texelM);
-    double worst = -1;
-    int worstX = 0, worstY = 0;
-    for (int dy = 0; dy <= maxLag; ++dy)
-        for (int dx = -maxLag; dx <= maxLag; ++dx)
+    const CorrelationPeak p = largestCorrelation(t, kSize, texelM, 5000.0, 33000.0);
+    const double worst = p.rho;
+    EXPECT_LT(worst, 0.3) << "autocorrelation peak at a lag of (" << p.eastM / 1000.0 << ", " << p.northM / 1000.0
+                          << ") km east, north";
+    std::printf("shadow map autocorrelation beyond 5 km: largest %.3f at (%.1f, %.1f) km\n", worst,
+                p.eastM / 1000.0, p.northM / 1000.0);
+}
+
+// Stratocumulus lie in rolls that run east-west (cloud_shape.glsl rollWavesPerModulus): along a roll (east)
+// the shadow map stays correlated where across the rolls (north), half a roll's wave away, it is
+// anticorrelated. Isotropic cells (what cumulus keep, the control) correlate about as much both ways.
+// Measured at 1.5-2.5 km: stratocumulus 0.16 east, -0.12 north (0.05, -0.02 before the rolls); cumulus
+// 0.05, -0.03.
+TEST_F(CloudShapes, StratocumulusLiesInRolls)
+{
+    constexpr uint32_t kSize = 128;
+    constexpr double kExtentM = 40000.0;
+    const double texelM = kExtentM / kSize;
+    struct Anisotropy
+    {
+        double east = 0, north = 0;
+    };
+    auto measure = [&](CloudType type) {
+        const std::vector<float> t =
+            shadowMapOf(*renderer, uniformLayer(0.5f, type, 900.0f, 1700.0f), 45.5, 2.5, kSize, kExtentM, false);
+        EXPECT_GT(variance(t), 0.01) << "the map must hold cloud shadows and gaps";
+        // Lags of 1.5-2.5 km: across the rolls (4.2 km wave at 45 N) the trough between two crests.
+        Anisotropy a;
+        for (double lagM = 1500.0; lagM <= 2500.0; lagM += texelM)
         {
-            if (std::hypot(dx, dy) * texelM <= 5000.0 || (dy == 0 && dx < 0))
-                continue;
-            double sxy = 0, sx = 0, sy = 0, sxx = 0, syy = 0;
-            size_t count = 0;
-            for (int y = 0; y + dy < int(kSize); ++y)
-                for (int x = std::max(0, -dx); x < int(kSize) && x + dx < int(kSize); ++x)
+            a.east += lagCorrelation(t, kSize, int(lagM / texelM), 0);
+            a.north += lagCorrelation(t, kSize, 0, int(lagM / texelM));
+        }
+        const double n = std::floor(1000.0 / texelM) + 1.0;
+        return Anisotropy{a.east / n, a.north / n};
+    };
+    const Anisotropy sc = measure(CloudType::Stratocumulus);
+    const Anisotropy cu = measure(CloudType::Cumulus);
+    std::printf("correlation at 1.5-2.5 km east, north: stratocumulus %.3f, %.3f; cumulus %.3f, %.3f\n", sc.east,
+                sc.north, cu.east, cu.north);
+    EXPECT_GT(sc.east - sc.north, 0.2) << "stratocumulus: no rolls along the east";
+    EXPECT_LT(sc.north, -0.07) << "stratocumulus: no gap between the rolls";
+    EXPECT_LT(std::fabs(cu.east - cu.north), 0.2) << "cumulus cells are not isotropic: the measure is biased";
+}
+
+// Cirrus fibres lie along the upper wind (east here), read from a 24 km texture tile; without a warp that
+// is not periodic with the tile, the fibres come back every tile in regular rows (the map correlated 0.66
+// with itself 14 km west and 34 km south). Over a 100 km map no lag beyond 10 km (up to 40 km east and
+// north) correlates above 0.3 (0.19 with the computed warp).
+TEST_F(CloudShapes, CirrusHasNoRegularRows)
+{
+    constexpr uint32_t kSize = 160;
+    constexpr double kExtentM = 100000.0;
+    const std::vector<float> t =
+        shadowMapOf(*renderer, highLayer(0.5f, CloudType::Cirrus, 9500.0f), 46.5, 6.5, kSize, kExtentM, true);
+    ASSERT_GT(variance(t), 1e-4) << "the map must hold cirrus streaks";
+    const CorrelationPeak p = largestCorrelation(t, kSize, kExtentM / kSize, 10000.0, 40000.0);
+    std::printf("cirrus autocorrelation beyond 10 km: largest %.3f at (%.1f, %.1f) km\n", p.rho, p.eastM / 1000.0,
+                p.northM / 1000.0);
+    EXPECT_LT(p.rho, 0.3) << "cirrus rows: autocorrelation peak at a lag of (" << p.eastM / 1000.0 << ", "
+                          << p.northM / 1000.0 << ") km east, north";
+}
+
+// The cirrus warp is computed: read from an 8-bit texture, as it was, lavapipe returned it in 8-bit steps
+// (56 m), so the fibres broke along lines ~100 m apart. Over a 1.5 km map of 12 m texels, the largest step
+// between neighbouring texels is under 11 times the mean step (the 8-bit warp: 17-27; computed: 7).
+TEST_F(CloudShapes, CirrusHasNoSteps)
+{
+    constexpr uint32_t kSize = 128;
+    for (const double latDeg : {45.2, 46.5, 47.1})
+    {
+        const std::vector<float> t = shadowMapOf(*renderer, highLayer(0.5f, CloudType::Cirrus, 9500.0f), latDeg,
+                                                 latDeg - 39.5, kSize, 1500.0, true);
+        ASSERT_GT(variance(t), 1e-4) << "the map must hold cirrus";
+        double sum = 0, largest = 0;
+        size_t count = 0;
+        for (uint32_t y = 0; y + 1 < kSize; ++y)
+            for (uint32_t x = 0; x + 1 < kSize; ++x)
+            {
+                const size_t i = size_t(y) * kSize + x;
+                for (const size_t j : {i + 1, i + kSize})
                 {
-                    const double a = t[size_t(y) * kSize + size_t(x)];
-                    const double b = t[size_t(y + dy) * kSize + size_t(x + dx)];
-                    sx += a;
-                    sy += b;
-                    sxx += a * a;
-                    syy += b * b;
-                    sxy += a * b;
+                    const double step = std::fabs(double(t[j]) - double(t[i]));
+                    sum += step;
+                    largest = std::max(largest, step);
                     ++count;
                 }
-            const double n = double(count);
-            const double cov = sxy / n - (sx / n) * (sy / n);
-            const double sa = sxx / n - (sx / n) * (sx / n), sb = syy / n - (sy / n) * (sy / n);
-            const double rho = cov / std::sqrt(std::max(sa * sb, 1e-12));
-            if (rho > worst)
-            {
-                worst = rho;
-                worstX = dx;
-                worstY = dy;
             }
-        }
-    EXPECT_LT(worst, 0.3) << "autocorrelation peak at a lag of (" << worstX * texelM / 1000.0 << ", "
-                          << -worstY * texelM / 1000.0 << ") km east, north";
-    std::printf("shadow map autocorrelation beyond 5 km: largest %.3f at (%.1f, %.1f) km\n", worst,
-                worstX * texelM / 1000.0, -worstY * texelM / 1000.0);
+        const double ratio = largest / (sum / double(count));
+        std::printf("cirrus at %.1f N: largest step %.1f times the mean\n", latDeg, ratio);
+        EXPECT_LT(ratio, 11.0) << "cirrus at " << latDeg << " N breaks in steps";
+    }
 }
