@@ -156,17 +156,6 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         vec3 radialNoise = toNoiseFrame(radial);
         vec3 warp = largeScaleWarp(noisePos, radPerM, BASE_NOISE_WARP_M);
         vec3 lookupPos = noisePos - radialNoise * ((h - base) * (1.0f - verticalScale)) + warp;
-        // Stratocumulus and altocumulus lie in rolls (cloud_shape.glsl rollWavesPerModulus): along the
-        // earth's axis their cells are narrower, so that they stretch along the rolls.
-        bool rolls = !anvilSlab && rollWavesPerModulus(cloudType) > 0.0f;
-        if (rolls)
-            lookupPos.z *= ROLL_CELL_SQUEEZE;
-        // The rolls' phase is taken at the column's base point (no tilt with height but the shear's), bent by
-        // the warp so that rolls meander and their spacing varies; computed before the fetch, so that only
-        // the wave lives across it.
-        float wave = rolls ? rollWave(noisePos.z - radialNoise.z * (h - base) + warp.z,
-                                      rollWavesPerModulus(cloudType), radPerM, radialNoise.z)
-                           : 1.0f;
         float shape = baseShapeAt(lookupPos, noisePos, radPerM);
         float densityScale = genusDensityScale(cloudType);
         if (anvilSlab)
@@ -180,10 +169,8 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         }
         else
         {
-            shape *= cloudHeightProfileRolled(cloudType, hf, rollTopScale(wave));
+            shape *= cloudHeightProfile(cloudType, hf);
             coverage *= coverageHeightFactor(cloudType, hf);
-            if (rolls)
-                coverage = rolledCoverage(coverage, wave);
             if (cloudType == CLOUD_TYPE_CUMULONIMBUS)
             {
                 shape = anvilShape(shape, hf, range.z);

@@ -36,8 +36,6 @@ float layerShapeBound(int cloudType, float h, float anvilAmount)
 bool layerMayHoldCloud(int cloudType, float h, float coverage, float anvilAmount)
 {
     float c = coverage * coverageHeightFactor(cloudType, h);
-    if (rollWavesPerModulus(cloudType) > 0.0f)
-        c = rolledCoverage(c, 1.0f);  // a roll's crest
     if (c <= 0.0f)
         return false;
     // Written so that a NaN (bad weather data) counts as cloud: the bounds must never hide any.

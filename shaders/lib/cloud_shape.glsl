@@ -34,20 +34,13 @@ vec2 cloudTypeProfileShape(int cloudType)
     return vec2(0.15f, 0.50f);  // cirrus-family genera in a volumetric layer: thin sheet
 }
 
-// Density envelope of a genus at height fraction h (0 at the base, 1 at the top) whose top fades from
-// `topScale` (>= 1) times lower heights (rollTopScale: thinner between rolls); always in [0,1], and never
-// above the envelope at topScale 1, so that cloud_extent.glsl's bound holds.
-float cloudHeightProfileRolled(int cloudType, float h, float topScale)
+// Density envelope of a genus at height fraction h (0 at the base, 1 at the top); always in [0,1].
+float cloudHeightProfile(int cloudType, float h)
 {
     vec2 shape = cloudTypeProfileShape(cloudType);
     float up = smoothstep(0.0f, shape.x, h);
-    float down = 1.0f - smoothstep(shape.y, 1.0f, h * topScale);
+    float down = 1.0f - smoothstep(shape.y, 1.0f, h);
     return saturate1(up * down);
-}
-
-float cloudHeightProfile(int cloudType, float h)
-{
-    return cloudHeightProfileRolled(cloudType, h, 1.0f);
 }
 
 // Vertical stretch of the base noise per genus (1 = isotropic, 0.35 = features ~3 times taller than
@@ -120,69 +113,6 @@ float largeScaleFbm(vec3 p, float radPerM)
     vec3 c = vec3(dot(p, vec3(5.0f, 3.0f, 0.0f)), dot(p, vec3(0.0f, 4.0f, 6.0f)), dot(p, vec3(7.0f, 0.0f, 3.0f)));
     vec3 s = sin(c * radPerM + vec3(4.2f, 1.3f, 0.4f));
     return 0.5f + LARGE_FBM_AMPLITUDE * (s.x + s.y + s.z);
-}
-
-// Stratocumulus and altocumulus lie in rolls: bands of cells with gaps between them (boundary-layer roll
-// vortices; altocumulus undulatus), where cumulus cells stand apart. A roll is a wave (rollWave) of the
-// coverage (rolledCoverage) and of the deck's depth (rollTopScale) whose phase advances along the noise
-// frame's z axis, the earth's axis: whole waves per offset modulus (so nothing jumps when the offsets wrap),
-// fixed to the earth (no frame input turns it, so it never slides with the eye or turns with a new weather
-// window; a direction from the layer's wind would). The rolls thus run east-west, along the prevailing
-// zonal wind of the westerlies and the trades; the wave on the ground is the modulus over this many waves
-// over cos(latitude): 3 km / cos(lat) for stratocumulus (4.2 km at 45 N, 2-3 times a boundary layer's
-// depth), 2 km / cos(lat) for altocumulus. 0: no rolls.
-float rollWavesPerModulus(int cloudType)
-{
-    if (cloudType == CLOUD_TYPE_STRATOCUMULUS)
-        return 128.0f;
-    if (cloudType == CLOUD_TYPE_ALTOCUMULUS)
-        return 192.0f;
-    return 0.0f;
-}
-
-// The base noise of a rolled genus is read this many times faster along the noise frame's z axis, so its
-// cells are narrower across the rolls than along them. 1.5 keeps the lookup periodic with the offsets (1.5
-// times the modulus is a whole number of base periods); 2 made a deck seen from FL350 grainy (finer cells,
-// tests/gpu/test_render.cpp EmptySpaceSkippingDrawsTheSameClouds with rolls of strength 0.9: 35.0 dB, 35.7
-// at 1.5; 36.8 without rolls, 35.75 now).
-SKY_CONST float ROLL_CELL_SQUEEZE = 1.5f;
-// Share of the largest swing the coverage c can take without leaving [0, 1] (min(c, 1 - c)) that the rolls
-// take, so that the mean cloud fraction stays c: a half-covered layer swings between 0.25 and 0.75. 0.9
-// (nearly clear between the rolls) laid the deck across a level view in horizontal bands that reprojection
-// could not follow while pitching (tests/gpu/test_flight_path.cpp PitchDownAt60DegreesPerSecond: bottom
-// band 28.9 dB, 31 required) and halved what neighbouring columns differ by (test_channels.cpp
-// AChannelsEdgeMatchesACentredViewAtTheSameRays failed).
-SKY_CONST float ROLL_STRENGTH = 0.5f;
-// A crest's coverage stays below the 0.97 where applyCoverage fills every hole (or at the layer's own
-// coverage above that): a nearly overcast deck's crests would otherwise be smooth tubes without lumps.
-SKY_CONST float ROLL_CREST_COVERAGE = 0.95f;
-// Between the rolls the deck is thinner: there its top fades from (1 + 2 x this) times lower heights.
-SKY_CONST float ROLL_THINNING = 0.15f;
-
-// The rolls' wave in [-1, 1] (1 on a crest) at noise-frame z `zM` (m), `waves` per offset modulus (radPerM =
-// 2 pi / the modulus), at a point where the earth's axis makes sin(latitude) `sinLat` with the local
-// vertical: it fades to 0 poleward of 70 degrees, where the waves on the ground grow long. The phase is
-// reduced with fract before the cosine, so a GPU's fast cosine never sees a large argument.
-float rollWave(float zM, float waves, float radPerM, float sinLat)
-{
-    float polar = smoothstep(0.94f, 0.98f, abs(sinLat));
-    return cos(6.2831853f * fract(zM * (waves * radPerM / 6.2831853f))) * (1.0f - polar);
-}
-
-// The coverage of a rolled genus (rollWavesPerModulus > 0) of coverage c at the rolls' wave `wave`: c swings
-// by ROLL_STRENGTH min(c, 1 - c), its crests capped at ROLL_CREST_COVERAGE. Increasing in c and in the wave,
-// so that at wave 1 it bounds the coverage anywhere in the layer (cloud_extent.glsl).
-float rolledCoverage(float coverage, float wave)
-{
-    float amplitude = ROLL_STRENGTH * max(min(coverage, 1.0f - coverage), 0.0f);
-    return min(coverage + amplitude * wave, max(coverage, ROLL_CREST_COVERAGE));
-}
-
-// Factor on the height fraction at which the top of a rolled genus fades (cloudHeightProfileRolled): 1 on
-// the crests and halfway down, 1 + 2 ROLL_THINNING in the troughs.
-float rollTopScale(float wave)
-{
-    return 1.0f + 2.0f * ROLL_THINNING * max(-wave, 0.0f);
 }
 
 // The base shape remap(R, lowFreqFbm - 1, 1, 0, 1) of our 128^3 noise (lowFreqFbm from the same texel

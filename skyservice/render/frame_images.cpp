@@ -142,8 +142,8 @@ SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height,
     // Beside the blocks, room for the columns marched in full in a turn (reprojection.h NewLines): B
     // texels of a block row per column; below them, for the rows of a pitch change: B texels of a block
     // column per row.
-    const uint32_t newColumnTexels = blockPx > 1 ? maxNewLines(width) * blockPx : 0u;
-    const uint32_t newRowTexels = blockPx > 1 ? maxNewLines(height) * blockPx : 0u;
+    const uint32_t newColumnTexels = blockPx > 1 ? maxNewColumns(width) * blockPx : 0u;
+    const uint32_t newRowTexels = blockPx > 1 ? maxNewRows(height) * blockPx : 0u;
     const uint32_t blocksX = (width + blockPx - 1) / blockPx + newColumnTexels;
     const uint32_t blocksY = (height + blockPx - 1) / blockPx + newRowTexels;
     const bool blockChanged = !hasSize(r.reconstruct.freshCloudImage, blocksX, blocksY);

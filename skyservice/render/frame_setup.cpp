@@ -31,7 +31,7 @@ bool divides(double period, double modulus)
 }  // namespace
 
 // 16 high-cloud periods (384 km by default): the computed large-scale fields (shaders/lib/large_scale.glsl,
-// cloud_shape.glsl largeScaleFbm and the stratocumulus rolls) have whole cycles per modulus, and every
+// cloud_shape.glsl largeScaleFbm) have whole cycles per modulus, and every
 // noise period must divide it; float offsets of a few hundred kilometres keep ~0.03 m resolution.
 double noiseOffsetModulusM(const QualitySettings& q) { return NOISE_OFFSET_MODULUS_HIGH_PERIODS * q.highNoisePeriodM; }
 
@@ -47,14 +47,6 @@ bool validateNoisePeriods(const QualitySettings& q, std::string& error)
                     " m (16 high-cloud periods): clouds would jump when the offsets wrap";
             return false;
         }
-    // Stratocumulus rolls read the base noise 1.5 times faster along one axis (cloud_shape.glsl
-    // ROLL_CELL_SQUEEZE): 1.5 modulus must hold whole base periods.
-    if (!divides(q.baseNoisePeriodM, 1.5 * m))
-    {
-        error = "base noise period " + std::to_string(q.baseNoisePeriodM) + " m does not divide 1.5 x " +
-                std::to_string(m) + " m (16 high-cloud periods): stratocumulus would jump when the offsets wrap";
-        return false;
-    }
     return true;
 }
 

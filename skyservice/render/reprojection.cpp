@@ -148,11 +148,11 @@ namespace
 {
 
 // The band of lines at the border of an image `size` lines long that `seen` (a line number -> whether
-// the previous frame saw it) says are new: from the side with more of them, at most maxNewLines.
+// the previous frame saw it) says are new: from the side with more of them, at most `most`.
 template <typename Seen>
-LineBand newBand(uint32_t size, Seen seen)
+LineBand newBand(uint32_t size, uint32_t most, Seen seen)
 {
-    const uint32_t most = std::min(maxNewLines(size), size);
+    most = std::min(most, size);
     uint32_t low = 0, high = 0;
     while (low < most && !seen(low))
         ++low;
@@ -190,14 +190,14 @@ NewLines findNewLines(const ReprojectionHistory& history, const ViewRequest& vie
         return true;
     };
     NewLines lines;
-    lines.columns = newBand(view.width, [&](uint32_t x) {
+    lines.columns = newBand(view.width, maxNewColumns(view.width), [&](uint32_t x) {
         glm::dvec2 q;
         for (double y : {0.5, 0.5 * h, h - 0.5})
             if (!project(x + 0.5, y, q) || q.x < 0.0 || q.x >= w)
                 return false;
         return true;
     });
-    lines.rows = newBand(view.height, [&](uint32_t y) {
+    lines.rows = newBand(view.height, maxNewRows(view.height), [&](uint32_t y) {
         glm::dvec2 q;
         for (double x : {0.5, 0.5 * w, w - 0.5})
             if (!project(x, y + 0.5, q) || q.y < 0.0 || q.y >= h)

@@ -72,10 +72,14 @@ struct NewLines
     LineBand rows;
 };
 
-/// At most 1/kNewLinesMaxShare of the width (height) is marched that way (8 columns of 128, 240 of 3840:
-/// a turn of about 5 degrees per frame at 90 degrees of field of view); beyond it the rest keeps the fill.
-constexpr uint32_t kNewLinesMaxShare = 16;
-inline uint32_t maxNewLines(uint32_t sizePx) { return (sizePx + kNewLinesMaxShare - 1) / kNewLinesMaxShare; }
+/// At most 1/16 of the width is marched that way (8 columns of 128, 240 of 3840: a turn of about 5 degrees
+/// per frame at 90 degrees of field of view), and 1/32 of the height (34 rows of 1080: a pitch change of
+/// about 2 degrees per frame at 60 degrees, 120 deg/s at 60 Hz; the fresh images hold room for them, 2 MB
+/// at 1080p); beyond it the rest keeps the fill.
+constexpr uint32_t kNewColumnsMaxShare = 16;
+constexpr uint32_t kNewRowsMaxShare = 32;
+inline uint32_t maxNewColumns(uint32_t widthPx) { return (widthPx + kNewColumnsMaxShare - 1) / kNewColumnsMaxShare; }
+inline uint32_t maxNewRows(uint32_t heightPx) { return (heightPx + kNewRowsMaxShare - 1) / kNewRowsMaxShare; }
 
 /// What the renderer remembers of the last reprojected frame.
 struct ReprojectionHistory
@@ -114,8 +118,8 @@ bool historyUsable(const ReprojectionHistory& history, const ViewRequest& view, 
 /// The lines of `view` (on `camera`) that the last frame in `history` did not see. Columns: on the side
 /// with more of them, counted from the image border inward while a column's rays at its top, middle and
 /// bottom all or partly fall off the previous image (left or right of it, or behind); rows the same
-/// with a row's rays at its left, middle and right falling off above or below. At most maxNewLines of
-/// each; none when the march block is 1 (every pixel is marched anyway).
+/// with a row's rays at its left, middle and right falling off above or below. At most maxNewColumns and
+/// maxNewRows; none when the march block is 1 (every pixel is marched anyway).
 NewLines findNewLines(const ReprojectionHistory& history, const ViewRequest& view, const CameraFrame& camera);
 
 /// Fills frame.reprojection (block size history.block.blockPx, its phase), frame.previousRight/Up/Forward

@@ -6,8 +6,6 @@
 //   window once made bases that no cell has);
 // - no repetition in the shadow map: over the built-in cumulus field, the autocorrelation of the 150 km
 //   map has no peak above 0.3 at any lag beyond 5 km (the 8 km noise tile once showed at 0.5 and more);
-// - stratocumulus rolls: the shadow map of a stratocumulus layer correlates along the rolls (east) far more
-//   than across them (north) at the same lag;
 // - cirrus without rows: the shadow map of a cirrus layer has no autocorrelation peak between 10 and 40 km
 //   (its 24 km texture tile made rows across the wind).
 #include "skyservice/render/renderer.h"
@@ -232,43 +230,6 @@ TEST_F(CloudShapes, ShadowMapDoesNotRepeat)
                           << ") km east, north";
     std::printf("shadow map autocorrelation beyond 5 km: largest %.3f at (%.1f, %.1f) km\n", worst,
                 p.eastM / 1000.0, p.northM / 1000.0);
-}
-
-// Stratocumulus lie in rolls that run east-west (cloud_shape.glsl rollWavesPerModulus): along a roll (east)
-// the shadow map stays correlated where across the rolls (north), half a roll's wave away, it is
-// anticorrelated. Isotropic cells (what cumulus keep, the control) correlate about as much both ways.
-// Measured at 1.5-2.5 km: stratocumulus 0.16 east, -0.12 north (0.05, -0.02 before the rolls); cumulus
-// 0.05, -0.03.
-TEST_F(CloudShapes, StratocumulusLiesInRolls)
-{
-    constexpr uint32_t kSize = 128;
-    constexpr double kExtentM = 40000.0;
-    const double texelM = kExtentM / kSize;
-    struct Anisotropy
-    {
-        double east = 0, north = 0;
-    };
-    auto measure = [&](CloudType type) {
-        const std::vector<float> t =
-            shadowMapOf(*renderer, uniformLayer(0.5f, type, 900.0f, 1700.0f), 45.5, 2.5, kSize, kExtentM, false);
-        EXPECT_GT(variance(t), 0.01) << "the map must hold cloud shadows and gaps";
-        // Lags of 1.5-2.5 km: across the rolls (4.2 km wave at 45 N) the trough between two crests.
-        Anisotropy a;
-        for (double lagM = 1500.0; lagM <= 2500.0; lagM += texelM)
-        {
-            a.east += lagCorrelation(t, kSize, int(lagM / texelM), 0);
-            a.north += lagCorrelation(t, kSize, 0, int(lagM / texelM));
-        }
-        const double n = std::floor(1000.0 / texelM) + 1.0;
-        return Anisotropy{a.east / n, a.north / n};
-    };
-    const Anisotropy sc = measure(CloudType::Stratocumulus);
-    const Anisotropy cu = measure(CloudType::Cumulus);
-    std::printf("correlation at 1.5-2.5 km east, north: stratocumulus %.3f, %.3f; cumulus %.3f, %.3f\n", sc.east,
-                sc.north, cu.east, cu.north);
-    EXPECT_GT(sc.east - sc.north, 0.2) << "stratocumulus: no rolls along the east";
-    EXPECT_LT(sc.north, -0.07) << "stratocumulus: no gap between the rolls";
-    EXPECT_LT(std::fabs(cu.east - cu.north), 0.2) << "cumulus cells are not isotropic: the measure is biased";
 }
 
 // Cirrus fibres lie along the upper wind (east here), read from a 24 km texture tile; without a warp that

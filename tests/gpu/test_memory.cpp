@@ -98,9 +98,9 @@ TEST_F(Memory, FreshImagesShrinkWhenTheEyeLeavesTheCloudAndHistoryStays)
     EXPECT_TRUE(lastHistoryDropReason(*renderer).empty()) << lastHistoryDropReason(*renderer);
     // One texel per 4x4 block, and beside and below them room for the columns and rows a turn or a pitch
     // change marches in full (reprojection.h NewLines): 4 texels per line.
-    const uint32_t freshWidth = v.width / 4 + maxNewLines(v.width) * 4;
+    const uint32_t freshWidth = v.width / 4 + maxNewColumns(v.width) * 4;
     EXPECT_EQ(renderer->reconstruct.freshCloudImage.extent.width, freshWidth);
-    EXPECT_EQ(renderer->reconstruct.freshCloudImage.extent.height, v.height / 4 + maxNewLines(v.height) * 4);
+    EXPECT_EQ(renderer->reconstruct.freshCloudImage.extent.height, v.height / 4 + maxNewRows(v.height) * 4);
     EXPECT_EQ(renderer->reconstruct.freshDepthImage.extent.width, freshWidth);
     EXPECT_LT(totalBytes(), insideBytes);
     std::printf("64x36 reprojected: %llu bytes inside the deck, %llu above it\n", (unsigned long long)insideBytes,

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Cloud shader math (shaders/lib/shell.glsl, cloud_shape.glsl, large_scale.glsl) compiled as C++ and checked against
-// analytic cases and a double-precision reference (STYLE §8, §16).
+// Cloud shader math (shaders/lib/shell.glsl, cloud_shape.glsl, large_scale.glsl) compiled as C++ and checked
+// against analytic cases and a double-precision reference (STYLE §8, §16).
 #include "shaders/shared/noise_params.h"
 #include "shaders/shared/weather_window.h"
 
@@ -355,58 +355,23 @@ TEST(CloudMath, StratusAndNimbostratusBasesAreRagged)
     EXPECT_EQ(glsl::raggedBaseFactor(0.0f, 0.0f, 1.0f), 1.0f) << "flat bases are untouched";
 }
 
-// The rolls of stratocumulus and altocumulus (cloud_shape.glsl) and the computed warp (large_scale.glsl)
-// repeat with the noise offsets (a whole number of waves per 384 km modulus), so nothing jumps when the
-// offsets wrap; the rolls keep the mean cloud fraction of the coverage and thin the deck between them only.
-TEST(CloudMath, RollsAndWarpRepeatWithTheOffsetsAndKeepTheCoverage)
+// The computed warp (large_scale.glsl) repeats with the noise offsets (whole cycles per 384 km modulus), so
+// nothing jumps when the offsets wrap.
+TEST(CloudMath, LargeScaleWarpRepeatsWithTheOffsets)
 {
     const float modulusM = 384000.0f;
     const float radPerM = float(2.0 * M_PI / double(modulusM));
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> place(0.0f, 400000.0f);
-    for (int cloudType : {CLOUD_TYPE_STRATOCUMULUS, CLOUD_TYPE_ALTOCUMULUS})
+    for (int i = 0; i < 1000; ++i)
     {
-        const float waves = glsl::rollWavesPerModulus(cloudType);
-        ASSERT_GT(waves, 0.0f);
-        for (int i = 0; i < 1000; ++i)
+        const glm::vec3 p(place(rng), place(rng), place(rng));
+        for (int axis = 0; axis < 3; ++axis)
         {
-            const float z = place(rng);
-            // A float of 400 km holds 1/32 m: the wave moves by under 1e-4 of its 2-3 km over that.
-            EXPECT_NEAR(glsl::rollWave(z, waves, radPerM, 0.7f), glsl::rollWave(z - modulusM, waves, radPerM, 0.7f),
-                        2e-3f);
-            const glm::vec3 p(place(rng), place(rng), place(rng));
-            for (int axis = 0; axis < 3; ++axis)
-            {
-                glm::vec3 q = p;
-                q[axis] -= modulusM;
-                const glm::vec3 d =
-                    glsl::largeScaleWarp(p, radPerM, 1500.0f) - glsl::largeScaleWarp(q, radPerM, 1500.0f);
-                EXPECT_LT(glm::length(d), 0.5f) << "axis " << axis;
-            }
+            glm::vec3 q = p;
+            q[axis] -= modulusM;
+            const glm::vec3 d = glsl::largeScaleWarp(p, radPerM, 1500.0f) - glsl::largeScaleWarp(q, radPerM, 1500.0f);
+            EXPECT_LT(glm::length(d), 0.5f) << "axis " << axis;
         }
     }
-    EXPECT_EQ(glsl::rollWavesPerModulus(CLOUD_TYPE_CUMULUS), 0.0f);
-    EXPECT_EQ(glsl::rollWavesPerModulus(CLOUD_TYPE_STRATUS), 0.0f);
-    // Poleward of 70 degrees the rolls fade out.
-    EXPECT_EQ(glsl::rollWave(1234.0f, 128.0f, radPerM, 0.99f), 0.0f);
-    // Over a wave the coverage averages to c (crests below ROLL_CREST_COVERAGE), swings by ROLL_STRENGTH min(c, 1 - c).
-    for (float c : {0.1f, 0.3f, 0.5f})
-    {
-        double mean = 0;
-        for (int i = 0; i < 360; ++i)
-            mean += double(glsl::rolledCoverage(c, float(std::cos(double(i) * M_PI / 180.0)))) / 360.0;
-        EXPECT_NEAR(mean, double(c), 1e-4) << c;
-        EXPECT_NEAR(glsl::rolledCoverage(c, -1.0f), c - glsl::ROLL_STRENGTH * std::min(c, 1.0f - c), 1e-6f);
-    }
-    EXPECT_FLOAT_EQ(glsl::rolledCoverage(0.9f, 1.0f), glsl::ROLL_CREST_COVERAGE);
-    EXPECT_FLOAT_EQ(glsl::rolledCoverage(0.99f, 1.0f), 0.99f);  // an overcast deck stays closed on the crests
-    // The deck thins only in the troughs: the envelope on a crest is the genus's own.
-    for (float h = 0.0f; h <= 1.0f; h += 0.01f)
-    {
-        EXPECT_EQ(glsl::cloudHeightProfileRolled(CLOUD_TYPE_STRATOCUMULUS, h, glsl::rollTopScale(1.0f)),
-                  glsl::cloudHeightProfile(CLOUD_TYPE_STRATOCUMULUS, h));
-        EXPECT_LE(glsl::cloudHeightProfileRolled(CLOUD_TYPE_STRATOCUMULUS, h, glsl::rollTopScale(-1.0f)),
-                  glsl::cloudHeightProfile(CLOUD_TYPE_STRATOCUMULUS, h));
-    }
-    EXPECT_EQ(glsl::cloudHeightProfileRolled(CLOUD_TYPE_STRATOCUMULUS, 0.8f, glsl::rollTopScale(-1.0f)), 0.0f);
 }

@@ -59,14 +59,10 @@ float highestCumulusFraction(float coverage)
 }
 
 // The shaders' density before detail (cloud_density.glsl) of a non-anvil layer for a base noise value in [0, 1].
-float layerDensity(int type, float h, float coverage, float anvilAmount, float noise, float rollWave)
+float layerDensity(int type, float h, float coverage, float anvilAmount, float noise)
 {
-    const bool rolls = glsl::rollWavesPerModulus(type) > 0.0f;
-    const float wave = rolls ? rollWave : 1.0f;
-    float shape = glsl::equalizeBaseShape(noise) * glsl::cloudHeightProfileRolled(type, h, glsl::rollTopScale(wave));
+    float shape = glsl::equalizeBaseShape(noise) * glsl::cloudHeightProfile(type, h);
     float c = coverage * glsl::coverageHeightFactor(type, h);
-    if (rolls)
-        c = glsl::rolledCoverage(c, wave);
     if (type == CLOUD_TYPE_CUMULONIMBUS)
         shape = glsl::anvilShape(shape, h, anvilAmount);
     return glsl::applyCoverage(shape, c);
@@ -207,18 +203,14 @@ TEST(ColumnBounds, CloudExtentRulesOutOnlyEmptyPoints)
         if (may)
             continue;
         ++ruledOut;
-        // The equalized noise is largest for the largest texel value (1): try it and a few below, on the
-        // crest of a roll (stratocumulus, altocumulus), in its trough and between.
-        const float wave = 2.0f * unit(rng) - 1.0f;
+        // The equalized noise is largest for the largest texel value (1): try it and a few below.
         for (float noise : {1.0f, 0.99f, 0.9f, unit(rng)})
-            for (float rollWave : {1.0f, -1.0f, wave})
-            {
-                const float slab = glsl::equalizeBaseShape(noise) * glsl::anvilSlabProfile(h, coverage);
-                const float d = anvil ? glsl::applyCoverage(slab, glsl::saturate1(coverage * 1.8f))
-                                      : layerDensity(type, h, coverage, anvilAmount, noise, rollWave);
-                ASSERT_EQ(d, 0.0f) << "type " << type << " h " << h << " coverage " << coverage << " anvil " << anvil
-                                   << " roll wave " << rollWave;
-            }
+        {
+            const float slab = glsl::equalizeBaseShape(noise) * glsl::anvilSlabProfile(h, coverage);
+            const float d = anvil ? glsl::applyCoverage(slab, glsl::saturate1(coverage * 1.8f))
+                                  : layerDensity(type, h, coverage, anvilAmount, noise);
+            ASSERT_EQ(d, 0.0f) << "type " << type << " h " << h << " coverage " << coverage << " anvil " << anvil;
+        }
     }
     EXPECT_GT(ruledOut, 20000);
     // The tables behind the column bounds hold at least every height the functions allow.

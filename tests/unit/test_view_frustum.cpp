@@ -196,7 +196,7 @@ TEST(ViewFrustum, ATurnMarchesTheColumnsThePreviousFrameDidNotSee)
         EXPECT_EQ(left.first, 0u);
         EXPECT_GT(left.count, 0u);
         EXPECT_EQ(turned(0.0).count, 0u);
-        EXPECT_EQ(turned(20.0).count, maxNewLines(request.width));
+        EXPECT_EQ(turned(20.0).count, maxNewColumns(request.width));
         history.block.blockPx = 1;
         EXPECT_EQ(turned(1.0).count, 0u);
     }
@@ -251,6 +251,6 @@ TEST(ViewFrustum, APitchChangeMarchesTheRowsThePreviousFrameDidNotSee)
         EXPECT_EQ(down.first + down.count, request.height);
         EXPECT_GT(down.count, 0u);
         EXPECT_EQ(pitched(0.0).count, 0u);
-        EXPECT_EQ(pitched(20.0).count, maxNewLines(request.height));
+        EXPECT_EQ(pitched(20.0).count, maxNewRows(request.height));
     }
 }
