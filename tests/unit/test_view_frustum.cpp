@@ -145,6 +145,36 @@ TEST(ViewFrustum, BadAnglesAreNamed)
     EXPECT_NE(error.find("up + down"), std::string::npos) << error;
 }
 
+namespace
+{
+
+// The history of one reprojected frame of `request` (block 4), as the renderer keeps it.
+ReprojectionHistory historyOf(const ViewRequest& request)
+{
+    ReprojectionHistory history;
+    history.valid = true;
+    history.lastView = request;
+    history.lastCamera = computeCameraFrame(request.pose);
+    history.block.blockPx = 4;
+    return history;
+}
+
+// The lines `view` marches in full after `history`'s frame, and with `f` the frame parameters that carry them.
+NewLines newLinesAfter(const ReprojectionHistory& history, const ViewRequest& view, FrameParams* f = nullptr)
+{
+    const CameraFrame cam = computeCameraFrame(view.pose);
+    ReprojectionHistory h = history;
+    h.newLines = findNewLines(h, view, cam);
+    if (f)
+    {
+        *f = frameFor(cam, view);
+        fillReprojectionParams(*f, h, view, cam, true);
+    }
+    return h.newLines;
+}
+
+}  // namespace
+
 // A right turn of one degree brings new columns in at the right border, a left turn at the left one; the
 // band ends where the previous image begins (the projection above: the first column inside it has all
 // three rays on the previous image, the band's last one not); a large turn is capped, no turn or a block
@@ -156,24 +186,11 @@ TEST(ViewFrustum, ATurnMarchesTheColumnsThePreviousFrameDidNotSee)
         ViewRequest request = offCentre();
         request.frustum.asymmetric = asymmetric;
         request.fovYDeg = 40.0;
-        const CameraFrame last = computeCameraFrame(request.pose);
-        ReprojectionHistory history;
-        history.valid = true;
-        history.lastView = request;
-        history.lastCamera = last;
-        history.block.blockPx = 4;
+        ReprojectionHistory history = historyOf(request);
         auto turned = [&](double deg, FrameParams* f = nullptr) {
             ViewRequest v = request;
             v.pose.headingDeg += deg;
-            const CameraFrame cam = computeCameraFrame(v.pose);
-            ReprojectionHistory h = history;
-            h.newLines = findNewLines(h, v, cam);
-            if (f)
-            {
-                *f = frameFor(cam, v);
-                fillReprojectionParams(*f, h, v, cam, true);
-            }
-            return h.newLines.columns;
+            return newLinesAfter(history, v, f).columns;
         };
         FrameParams f;
         const LineBand right = turned(1.0, &f);
@@ -212,23 +229,11 @@ TEST(ViewFrustum, APitchChangeMarchesTheRowsThePreviousFrameDidNotSee)
         ViewRequest request = offCentre();
         request.frustum.asymmetric = asymmetric;
         request.fovYDeg = 40.0;
-        ReprojectionHistory history;
-        history.valid = true;
-        history.lastView = request;
-        history.lastCamera = computeCameraFrame(request.pose);
-        history.block.blockPx = 4;
+        const ReprojectionHistory history = historyOf(request);
         auto pitched = [&](double deg, FrameParams* f = nullptr) {
             ViewRequest v = request;
             v.pose.pitchDeg += deg;
-            const CameraFrame cam = computeCameraFrame(v.pose);
-            ReprojectionHistory h = history;
-            h.newLines = findNewLines(h, v, cam);
-            if (f)
-            {
-                *f = frameFor(cam, v);
-                fillReprojectionParams(*f, h, v, cam, true);
-            }
-            return h.newLines.rows;
+            return newLinesAfter(history, v, f).rows;
         };
         FrameParams f;
         const LineBand up = pitched(1.0, &f);
