@@ -85,16 +85,29 @@ float baseShapeAt(vec3 lookupPos, vec3 largePos, float radPerM)
     return equalizeBaseShape(remapValue(n.x, lowFreqFbm - 1.0f, 1.0f, 0.0f, 1.0f));
 }
 
-// Detail erosion of `density` at `noisePos`, and the torn base of a genus with `raggedness` (cloud_shape.glsl
-// baseRaggedness; the detail noise tears it, so it fades with the detail).
-float erodeAt(float density, vec3 noisePos, float hf, float distanceM, float raggedness)
+// Whether detail erosion applies at `distanceM` (frame.marchLod.xy: it fades out with distance, where its
+// noise is finer than a pixel).
+float detailFade(float distanceM)
 {
-    // Detail erosion fades out with distance (frame.marchLod.xy): far away its noise is finer than a pixel.
-    float fade = 1.0f - smoothstep(frame.marchLod.x, frame.marchLod.y, distanceM);
-    if (fade <= 0.0f || (frame.image.w & FRAME_FLAG_NO_DETAIL) != 0u)
-        return density;
+    if ((frame.image.w & FRAME_FLAG_NO_DETAIL) != 0u)
+        return 0.0f;
+    return 1.0f - smoothstep(frame.marchLod.x, frame.marchLod.y, distanceM);
+}
+
+// The curl noise that distorts the detail lookup at `noisePos`. Fetched by cloudDensity before the base
+// noise, not after it: the two fetches then wait together instead of one after the other (the march is
+// bound by such chains of dependent fetches: weather, base noise, curl, detail).
+vec2 curlAt(vec3 noisePos)
+{
+    return textureLod(curlNoise, noisePos.xy / frame.noiseScale.z, 0.0f).xy;
+}
+
+// Detail erosion of `density` at `noisePos` (`curl`: curlAt there), faded by `fade` (detailFade), and the
+// torn base of a genus with `raggedness` (cloud_shape.glsl baseRaggedness; the detail noise tears it, so it
+// fades with the detail).
+float erodeAt(float density, vec3 noisePos, vec2 curl, float hf, float fade, float raggedness)
+{
     // Curl-distorted coordinates, strongest at the base where clouds look torn by turbulence.
-    vec2 curl = textureLod(curlNoise, noisePos.xy / frame.noiseScale.z, 0.0f).xy;
     vec3 q = noisePos + vec3(curl, -curl.x) * (1.0f - hf) * 0.12f * frame.noiseScale.y;
     vec4 dn = textureLod(detailNoise, q / frame.noiseScale.y, 0.0f);
     float detailFbm = dn.x * 0.625f + dn.y * 0.25f + dn.z * 0.125f;
@@ -122,6 +135,10 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
     if (!w.inside || h < frame.shell.x || h > frame.shell.y)
         return s;
     vec3 noiseRel = toNoiseFrame(p);
+    // The detail and the rain rate of full samples are fetched early (curlAt says why); the rain rate is
+    // the same texel for every layer.
+    float fade = cheap ? 0.0f : detailFade(distanceM);
+    vec4 rainMmH = cheap ? vec4(0.0f) : textureLod(weatherWindow, vec3(w.uv, float(WEATHER_GPU_PRECIP_SLICE)), 0.0f);
     vec3 radial = normalize(p + vec3(0.0f, 0.0f, frame.earth.y));  // local vertical at p
     float radPerM = 6.2831853f / (float(NOISE_OFFSET_MODULUS_HIGH_PERIODS) * frame.noiseScale.w);
     float best = 0.0f;
@@ -154,6 +171,7 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         // shift of p, so nothing cancels in float and the point stays world-fixed.
         float verticalScale = baseNoiseVerticalScale(anvilSlab ? CLOUD_TYPE_CIRROSTRATUS : cloudType);
         vec3 radialNoise = toNoiseFrame(radial);
+        vec2 curl = fade > 0.0f ? curlAt(noisePos) : vec2(0.0f);
         vec3 warp = largeScaleWarp(noisePos, radPerM, BASE_NOISE_WARP_M);
         vec3 lookupPos = noisePos - radialNoise * ((h - base) * (1.0f - verticalScale)) + warp;
         float shape = baseShapeAt(lookupPos, noisePos, radPerM);
@@ -180,8 +198,8 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         float d = applyCoverage(shape, coverage);
         if (d <= 0.0f)
             continue;
-        if (!cheap)
-            d = erodeAt(d, noisePos, hf, distanceM, anvilSlab ? 0.0f : baseRaggedness(cloudType));
+        if (fade > 0.0f)
+            d = erodeAt(d, noisePos, curl, hf, fade, anvilSlab ? 0.0f : baseRaggedness(cloudType));
         d *= densityScale;
         s.density += d;
         if (d > best)
@@ -189,7 +207,7 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
             best = d;
             s.heightFraction = hf;
             if (!cheap && !anvilSlab)
-                s.rainMmH = textureLod(weatherWindow, vec3(w.uv, float(WEATHER_GPU_PRECIP_SLICE)), 0.0f)[k];
+                s.rainMmH = rainMmH[k];
         }
     }
     return s;

@@ -72,9 +72,11 @@ vec4 historyCloud(ivec2 p)
 // correctly). Catmull-Rom, not bilinear: a pixel lives on in the history for up to B x B frames and is
 // resampled in each of them; bilinear weights blur it every time, and in a 60 deg/s turn the display lost
 // ~30 % of its detail against a full render (tests/gpu/test_flight_path.cpp, sharpness.h), which the
-// cubic's negative lobes keep. Its overshoot is cut at 0 and at alpha 1; the colour clamp against the
-// fresh neighbourhood follows. Where the four nearest texels hold no cloud the result is 0 whatever the
-// outer ones hold (their weights are never positive), so clear sky reads four texels, not sixteen.
+// cubic's negative lobes keep. Twelve taps, not sixteen: the four corners of the 4x4 stencil carry
+// weights of at most 0.0055 (w0 w0, w0 w3, ...), left out and the rest renormalized; each tap costs about
+// 2 us per 1080p frame on an H200 (BENCHMARKS.md). Its overshoot is cut at 0 and at alpha 1; the colour
+// clamp against the fresh neighbourhood follows. Where the four nearest texels hold no cloud the result
+// is 0 whatever the outer ones hold (their weights are never positive), so clear sky reads four texels.
 vec4 cubicHistory(vec2 q)
 {
     vec2 t = q - 0.5f;
@@ -94,19 +96,19 @@ vec4 cubicHistory(vec2 q)
     vec2 w2 = 0.5f * (-3.0f * f3 + 4.0f * f2 + f);
     vec2 w3 = 0.5f * (f3 - f2);
     vec4 sum = w1.y * (w1.x * c11 + w2.x * c21) + w2.y * (w1.x * c12 + w2.x * c22);
-    // The outer ring: rows -1 and 2 whole, columns -1 and 2 of rows 0 and 1.
-    float wx[4] = float[4](w0.x, w1.x, w2.x, w3.x);
-    for (int k = 0; k < 4; ++k)
+    // The outer ring without its corners: rows -1 and 2 and columns -1 and 2, each at the inner two taps.
+    float wsum = (w1.y + w2.y) * (w1.x + w2.x);
+    for (int k = 1; k < 3; ++k)
     {
-        sum += w0.y * wx[k] * historyCloud(clamp(i1 + ivec2(k - 1, -1), ivec2(0), top));
-        sum += w3.y * wx[k] * historyCloud(clamp(i1 + ivec2(k - 1, 2), ivec2(0), top));
+        float wxk = k == 1 ? w1.x : w2.x;
+        sum += w0.y * wxk * historyCloud(clamp(i1 + ivec2(k - 1, -1), ivec2(0), top));
+        sum += w3.y * wxk * historyCloud(clamp(i1 + ivec2(k - 1, 2), ivec2(0), top));
+        float wy = k == 1 ? w1.y : w2.y;
+        sum += w0.x * wy * historyCloud(clamp(i1 + ivec2(-1, k - 1), ivec2(0), top));
+        sum += w3.x * wy * historyCloud(clamp(i1 + ivec2(2, k - 1), ivec2(0), top));
+        wsum += (w0.y + w3.y) * wxk + (w0.x + w3.x) * wy;
     }
-    for (int k = 0; k < 2; ++k)
-    {
-        float wy = k == 0 ? w1.y : w2.y;
-        sum += w0.x * wy * historyCloud(clamp(i1 + ivec2(-1, k), ivec2(0), top));
-        sum += w3.x * wy * historyCloud(clamp(i1 + ivec2(2, k), ivec2(0), top));
-    }
+    sum /= wsum;
     return vec4(max(sum.xyz, vec3(0.0f)), clamp(sum.w, 0.0f, 1.0f));
 }
 

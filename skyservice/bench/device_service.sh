@@ -15,7 +15,8 @@
 # 1080p shm with an earlier tree prepared with `prepare-before REV`, the frame path before a change, in the same
 # call; "before-both" its shm and Vulkan transports, "before-shadow" with a 1024² shadow map, "sky-bench-before"
 # the renderer alone with the earlier tree; "sky-bench@NAME" the renderer with the SPIR-V in .gpu/spirv-NAME,
-# for shader-only variants built here), SKY_SVC_FRAMES (timed frames per scene, size and
+# for shader-only variants built here; "sky-bench+OPTIONS" and "sky-bench-before+OPTIONS" with more sky-bench
+# options, commas for spaces, e.g. sky-bench+--full-cone-samples,1), SKY_SVC_FRAMES (timed frames per scene, size and
 # transport; default 300), SKY_SVC_SCENES (default all), SKY_SVC_LIMIT_S (each run's time limit, default
 # 150 s), SKY_SVC_BUILD=0 (reuse /tmp/build from an earlier call on the same warm machine). A device call
 # lasts at most 10 minutes: with a slow frame path, lower SKY_SVC_FRAMES or split SKY_SVC_RUNS over calls.
@@ -109,11 +110,11 @@ svcBefore() {  # LABEL OPTIONS...: the earlier tree's daemon and bench, with its
     --warmup 10 --device NVIDIA --json "$OUT/service-before-$label.json" "$@"
   el "earlier tree: sky-service-bench $label rc=$?"
 }
-skyBench() {  # SUFFIX BENCH SPIRV
-  el "sky-bench$1 reprojected 1920x1080"
+skyBench() {  # SUFFIX BENCH SPIRV [OPTIONS...]
+  el "sky-bench$1 reprojected 1920x1080 ${*:4}"
   SKY_SPIRV_DIR=$3 timeout "$LIMIT" "$2" --scene "$SCENES" --width 1920 --height 1080 --frames 100 --warmup 20 \
     --mode reprojected --speed 250 --steps 96 --light-samples 5 --device NVIDIA \
-    --json "$OUT/bench-reprojected-1920x1080$1.json" | grep -v "MiB$"
+    --json "$OUT/bench-reprojected-1920x1080$1.json" "${@:4}" | grep -v "MiB$"
   el "sky-bench$1 rc=${PIPESTATUS[0]}"
 }
 for run in ${SKY_SVC_RUNS:-1080p 1080p-layers 1080p-layers-vulkan 1080p-shadow 4k 640 rate1000 sky-bench baseline}; do
@@ -135,6 +136,11 @@ for run in ${SKY_SVC_RUNS:-1080p 1080p-layers 1080p-layers-vulkan 1080p-shadow 4
       skyBench "" $BENCH "$SKY_SPIRV_DIR" ;;
     sky-bench-before)  # the same with the earlier tree (a change's cost on the renderer, in the same call)
       skyBench "-before" /tmp/build-before/skyservice/sky-bench "$G/before/spirv" ;;
+    sky-bench+*)  # the current renderer with more options, commas for spaces (a knob's cost, same call)
+      extra=${run#sky-bench+}; skyBench "-${extra//[^a-z0-9]/}" $BENCH "$SKY_SPIRV_DIR" ${extra//,/ } ;;
+    sky-bench-before+*)  # the same with the earlier tree
+      extra=${run#sky-bench-before+}
+      skyBench "-before-${extra//[^a-z0-9]/}" /tmp/build-before/skyservice/sky-bench "$G/before/spirv" ${extra//,/ } ;;
     sky-bench@*)  # the current renderer with the shaders of .gpu/spirv-NAME (a shader-only variant, same call)
       skyBench "-${run#sky-bench@}" $BENCH "$G/spirv-${run#sky-bench@}" ;;
     baseline)  # GPU.md's yardstick at the same size, in the same call
