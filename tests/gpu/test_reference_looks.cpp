@@ -7,6 +7,7 @@
 // almost nothing and a few carry much, so a sum of few samples mostly falls short. The reference's underside/
 // top ratio of means from below was 0.281 at 8 samples, 0.316 at 16, 0.376 at 32 and 0.407 at 64 (H200); the
 // view from below takes 32 (~25 s on lavapipe). sky-reference-looks prints the medians at more samples.
+#include "skyservice/app/look_views.h"
 #include "skyservice/render/reference_renderer.h"
 #include "skyservice/sky/builtin_weather.h"
 #include "tests/gpu/look_stats.h"
@@ -72,12 +73,10 @@ protected:
         return p;
     }
 
-    // The view from above (the look sheet's cumulus from above) at a small size, path-traced.
+    // The look sheet's cumulus from above (skyservice/app/look_views.h) at a small size, path-traced.
     static SkyStatus renderAbove(const ReferenceSettings& settings, uint32_t width, uint32_t height)
     {
-        ViewRequest view = testscenes::lookUp(44.3, 7.5, 4000.0, -15.0, "2026-06-21T12:00:00Z");
-        view.width = width;
-        view.height = height;
+        const ViewRequest view = lookViewRequest(*findLookView(lookViews(), "look-cumulus-above"), width, height);
         RenderResult path;
         return renderReference(*renderer_, reference_, view, testscenes::testQuality(), settings, path);
     }
