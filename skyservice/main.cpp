@@ -94,6 +94,9 @@ CLI::App* addShowcaseCommand(CLI::App& app, ShowcaseOptions& showcase)
     cmd->add_option("--out", showcase.outDir, "Output folder");
     cmd->add_option("--width", showcase.width, "Image width (pixels)")->check(CLI::Range(8, 8192));
     cmd->add_option("--height", showcase.height, "Image height (pixels)")->check(CLI::Range(8, 8192));
+    cmd->add_option("--reference-spp", showcase.referenceSpp,
+                    "look-reference-pairs.png: samples per pixel of the path-traced reference (0: skip the pairs)")
+        ->check(CLI::Range(0, 4096));
     return cmd;
 }
 

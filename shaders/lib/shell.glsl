@@ -66,11 +66,13 @@ bool rayShellInterval(float mu, float hc, float hMin, float hMax, float R, float
     }
     else if (hc <= hMax)
     {
-        // Inside: from the eye to the outer sphere, or down to the inner one.
+        // Inside: from the eye to the outer sphere, or down to the inner one. A ray heading into the inner
+        // sphere (its far root ahead) leaves through the base at the near root; an eye on the base has that
+        // root at 0 and no stretch left, not one through the earth to the far side of the outer sphere.
         tEnter = 0.0f;
         tExit = outerFar;
-        if (hitsInner && innerNear > 0.0f)
-            tExit = innerNear;
+        if (hitsInner && innerFar > 0.0f)
+            tExit = max(innerNear, 0.0f);
     }
     else
     {

@@ -124,10 +124,18 @@ Tracker startTracker()
     return Tracker(0.0f, 0.0f, 0.0f, -1.0f, REFERENCE_STRETCH_M);
 }
 
+// The least a stretch step moves the ray on (m): 1 cm, or 1e-6 t (~8 float spacings of t) where t + 1 cm
+// rounds back to t (beyond 262 km): a step that stands still would find the same stretch again forever.
+float minimumAdvance(float t)
+{
+    return max(0.01f, 1e-6f * t);
+}
+
 // What a step toward the next stretch found.
-const int STRETCH_MORE = 0;   // moved on (an empty stretch skipped, a shell stretch entered): step again
-const int STRETCH_FOUND = 1;  // a stretch that may hold cloud, with its majorant
-const int STRETCH_NONE = 2;   // the ray has left the clouds for good
+const int STRETCH_ENTERED = 0;  // a stretch of the shell entered: step again
+const int STRETCH_FOUND = 1;    // a stretch that may hold cloud, with its majorant
+const int STRETCH_NONE = 2;     // the ray has left the clouds for good
+const int STRETCH_SKIPPED = 3;  // an empty stretch passed over (column bounds, zero majorant): step again
 
 // One step toward the next stretch of the ray (o, d) that may hold cloud: each call does one thing, so
 // that the caller can count its work (reference_path.comp.glsl).
@@ -137,21 +145,21 @@ int stretchStep(vec3 o, vec3 d, INOUT(Tracker) k)
     {
         float enter;
         float exit;
-        // A ray can leave the shell downward and re-enter it further on (a grazing path): 1 cm on.
-        if (!nextShellStretch(o, d, k.t + 0.01f, enter, exit))
+        // A ray can leave the shell downward and re-enter it further on (a grazing path): a little on.
+        if (!nextShellStretch(o, d, k.t + minimumAdvance(k.t), enter, exit))
             return STRETCH_NONE;
         k.t = enter;
         k.shellEnd = exit;
         k.stretchM = REFERENCE_STRETCH_M;
-        return STRETCH_MORE;
+        return STRETCH_ENTERED;
     }
-    float t1 = min(k.t + k.stretchM, k.shellEnd);
+    float t1 = max(min(k.t + k.stretchM, k.shellEnd), k.t + minimumAdvance(k.t));
     bool skipping = !referenceFlag(REFERENCE_FLAG_SLAB) && (frame.image.w & FRAME_FLAG_NO_SKIPPING) == 0u;
     if (skipping && noCloudOnSegment(o, d, k.t, t1))
     {
         k.t = t1;
         k.stretchM *= 2.0f;
-        return STRETCH_MORE;
+        return STRETCH_SKIPPED;
     }
     k.stretchEnd = t1;
     k.majorant = majorantOn(o, d, k.t, t1);
@@ -159,7 +167,7 @@ int stretchStep(vec3 o, vec3 d, INOUT(Tracker) k)
     if (k.majorant > 0.0f)
         return STRETCH_FOUND;
     k.t = t1;
-    return STRETCH_MORE;
+    return STRETCH_SKIPPED;
 }
 
 // One tentative collision: moves the tracker by an exponential step of its majorant; false when the step

@@ -51,15 +51,9 @@ layout(binding = 9, rgba32f) uniform image2D radianceSum;
 layout(binding = 10, r32f) uniform image2D depthSum;
 layout(binding = 11, rgba16f) uniform writeonly image2D cloudOut;
 layout(binding = 12, r32f) uniform writeonly image2D depthOut;
-// Counters (ReferenceStats in reference_renderer.h): densities above their majorant (the tracking is then
-// biased), paths cut at ref.limits.x events, and the pixels whose samples are not all done after this
-// dispatch (the host dispatches again while there are any).
-layout(binding = 13, std430) buffer StatsBlock
-{
-    uint majorantExceeded;
-    uint pathsTruncated;
-    uint pixelsUnfinished;
-} stats;
+// Counters (shaders/shared/reference_params.h ReferenceCounters): the host dispatches again while a pixel
+// is unfinished, up to its bound.
+layout(binding = 13, std430) buffer StatsBlock { ReferenceCounters stats; };
 layout(binding = 14, std430) buffer PathBlock { ReferencePathState paths[]; };
 // The layer bounds of the window's columns (shaders/shared/reference_params.h): the tracking's majorants.
 layout(binding = 15) uniform sampler2D layerBounds;
@@ -314,9 +308,12 @@ void main()
     // One step of the path per iteration, within the budget (the iterations of the loops it calls
     // included), leaving room for the longest step.
     uint budget = ref.control.z - min(ref.control.z, 64u);
+    uint steps = 0u;
+    uint skipped = 0u;
     for (uint iterations = 0u; iterations < budget && p.mode != REFERENCE_MODE_IDLE;)
     {
         iterations += 1u;
+        steps += 1u;
         if (p.mode == REFERENCE_MODE_START)
         {
             // Each sample's own stream: the pixel, the sample and the seed hashed together.
@@ -336,7 +333,10 @@ void main()
         if (p.k.majorant <= 0.0f)
         {
             iterations += DENSITY_ITERATIONS;
-            if (stretchStep(p.o, rayD, p.k) == STRETCH_NONE)
+            int found = stretchStep(p.o, rayD, p.k);
+            if (found == STRETCH_SKIPPED)
+                skipped += 1u;
+            else if (found == STRETCH_NONE)
                 iterations += escape(p, sums);
             continue;
         }
@@ -374,7 +374,15 @@ void main()
     }
     storePath(index, p);
     if (p.mode != REFERENCE_MODE_IDLE)
+    {
         atomicAdd(stats.pixelsUnfinished, 1u);
+        atomicAdd(stats.samplesUnfinished, ref.control.y - p.samplesDone);
+    }
+    // 64-bit sums in two words: carry when the low word wraps (the old value shows it).
+    if (atomicAdd(stats.stepsLow, steps) > 0xFFFFFFFFu - steps)
+        atomicAdd(stats.stepsHigh, 1u);
+    if (atomicAdd(stats.skippedLow, skipped) > 0xFFFFFFFFu - skipped)
+        atomicAdd(stats.skippedHigh, 1u);
 
     vec4 sum = vec4(sums.radiance, sums.collisions);
     float distanceSum = sums.distanceM;

@@ -70,4 +70,19 @@ struct ReferencePathState
     uvec4 control;   // x: random state; y: scattering events; z: mode (REFERENCE_MODE_*); w: samples done
 };
 
+// The path tracer's counters (one storage buffer, host-visible; reference_renderer.h ReferenceStats says what
+// each means). The wide ones are 64-bit sums kept in two words: an invocation adds its work once per dispatch
+// and carries into the high word when the low one wraps (no 64-bit atomics needed).
+struct ReferenceCounters
+{
+    uint majorantExceeded;   // densities above their majorant
+    uint pathsTruncated;     // paths cut at limits.x scattering events
+    uint pixelsUnfinished;   // pixels whose samples are not all done after this dispatch (reset by the host)
+    uint samplesUnfinished;  // their samples not done (reset by the host): what a cut at the dispatch bound drops
+    uint stepsLow;           // loop iterations of the paths (one step of either tracking, a stretch, a start)
+    uint stepsHigh;
+    uint skippedLow;         // stretches of ray passed over as empty (column bounds or a zero majorant)
+    uint skippedHigh;
+};
+
 #endif

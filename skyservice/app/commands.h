@@ -59,6 +59,9 @@ struct ShowcaseOptions
     std::string outDir = "out";
     uint32_t width = 640;
     uint32_t height = 360;
+    /// look-reference-pairs.png: the reference's samples per pixel (0: no pairs). The default keeps the four
+    /// pairs near a minute on a 2-core CPU (lavapipe).
+    uint32_t referenceSpp = 8;
 };
 
 void addCommonOptions(CLI::App& app, CommonRenderOptions& o);

@@ -153,7 +153,12 @@ int runRenderCommand(const RenderCommandOptions& options)
                 {"maxScatteringEvents", referenceSettings.maxEvents},
                 {"pathsTruncated", reference.last.pathsTruncated},
                 {"majorantExceeded", reference.last.majorantExceeded},
+                {"pathsCut", reference.last.pathsCut},
+                {"paths", reference.last.paths},
+                {"steps", reference.last.steps},
+                {"stretchesSkipped", reference.last.stretchesSkipped},
                 {"dispatches", reference.last.dispatches},
+                {"maxDispatches", reference.last.maxDispatches},
                 {"seconds", reference.last.seconds}};
         if (!writeRenderFiles(options.out, request, result, facts, error))
         {

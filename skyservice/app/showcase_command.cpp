@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 // `skyservice showcase` (what `./sky run` runs): the views that show what the product does, rendered
 // from the built-in weather and, when the real GFS sample is beside the project (../shared/weather/),
-// from that forecast at places chosen from its data (issue 4), plus a captioned contact sheet.
+// from that forecast at places chosen from its data (issue 4), plus a captioned contact sheet, the look sheet
+// (issue 22) and four look views next to the reference path tracer.
 #include "skyservice/app/commands.h"
 
+#include "skyservice/app/look_views.h"
+#include "skyservice/app/reference_pairs.h"
 #include "skyservice/app/render_files.h"
 #include "skyservice/output/contact_sheet.h"
 #include "skyservice/output/image_files.h"
@@ -29,6 +32,10 @@ namespace sky
 namespace
 {
 
+// Size of the views next to the reference (look-reference-pairs.png): the path tracer's cost grows with it.
+constexpr uint32_t kReferencePairWidth = 64;
+constexpr uint32_t kReferencePairHeight = 36;
+
 struct ShowcaseView
 {
     std::string name;
@@ -42,12 +49,6 @@ struct ShowcaseView
     uint32_t shadowMapSize = 0;              ///< > 0: also write the cloud shadow map (texels per side)
     bool look = false;  ///< a look-sheet view (issue 22): half size, on look-sheet.png instead of the contact sheet
 };
-
-// Metres -> degrees of longitude at a latitude, for placing eyes relative to the built-in clouds.
-double lonOffsetDeg(double metres, double latDeg)
-{
-    return metres / (111320.0 * std::cos(latDeg * M_PI / 180.0));
-}
 
 ShowcaseView builtinView(const char* name, const char* caption, const EyePose& pose, double fovYDeg,
                          const char* timeIso, uint32_t shadowMapSize = 0)
@@ -83,34 +84,23 @@ std::vector<ShowcaseView> builtinViews()
     };
 }
 
-// The look sheet (issue 22): where pilots look at the built-in clouds, to judge their shapes at a glance.
-// Small (half the showcase size) so that `./sky run` stays quick on a CPU.
-std::vector<ShowcaseView> lookViews()
+// The look sheet (skyservice/app/look_views.h). Small (half the showcase size) so that `./sky run` stays quick
+// on a CPU.
+std::vector<ShowcaseView> lookSheetViews()
 {
-    const double cuLat = 44.3, cuLon = 7.5;  // inside the built-in cumulus field (client_demo's start)
-    const double cbLat = kBuiltinCumulonimbusLatDeg, cbLon = kBuiltinCumulonimbusLonDeg;
-    std::vector<ShowcaseView> views = {
-        builtinView("look-under-cumulus", "Under cumulus at noon: 500 m, pitch 10 deg, 44.3N 7.5E",
-                    {cuLat, cuLon, 500.0, 0.0, 10.0, 0.0}, 60.0, "2026-06-21T11:30:00Z"),
-        // 1.6 km east of client_demo's start: with the domed cumulus its start at 1500 m is inside a cloud.
-        builtinView("look-among-cumulus", "Among cumulus at base level: 1500 m, in a gap",
-                    {cuLat, cuLon + 0.02, 1500.0, 0.0, 0.0, 0.0}, 60.0, "2026-06-21T16:00:00Z"),
-        builtinView("look-cumulus-above", "Cumulus from above: 4000 m, sun behind",
-                    {cuLat, cuLon, 4000.0, 0.0, -15.0, 0.0}, 60.0, "2026-06-21T11:30:00Z"),
-        builtinView("look-cumulonimbus-20km", "Cumulonimbus and anvil from 20 km, 3600 m",
-                    {cbLat, cbLon - lonOffsetDeg(20000.0, cbLat), 3600.0, 90.0, 12.0, 0.0}, 70.0,
-                    "2026-06-21T15:00:00Z"),
-        builtinView("look-anvil-fl400", "The anvil from FL400, 30 km west of the tower",
-                    {cbLat, cbLon - lonOffsetDeg(30000.0, cbLat), 12200.0, 90.0, -12.0, 0.0}, 60.0,
-                    "2026-06-21T15:00:00Z"),
-        builtinView("look-sunset-cumulus", "Sunset behind cumulus: 800 m, towards the sun",
-                    {44.5, cuLon, 800.0, 302.0, 6.0, 0.0}, 60.0, "2026-06-21T18:55:00Z"),
-        builtinView("look-inside-stratus", "Inside the stratocumulus deck at 1300 m",
-                    {kBuiltinDeckLatDeg, kBuiltinDeckLonDeg, 1300.0, 45.0, 0.0, 0.0}, 60.0,
-                    "2026-06-21T10:00:00Z"),
-    };
-    for (ShowcaseView& v : views)
+    std::vector<ShowcaseView> views;
+    for (const LookView& l : lookViews())
+    {
+        ShowcaseView v;
+        v.name = l.name;
+        v.caption = l.caption;
+        v.tileCaption = l.caption;
+        v.pose = l.pose;
+        v.fovYDeg = l.fovYDeg;
+        v.unixTimeS = l.unixTimeS;
         v.look = true;
+        views.push_back(v);
+    }
     return views;
 }
 
@@ -282,7 +272,7 @@ int runShowcaseCommand(const ShowcaseOptions& options)
     }
 
     std::vector<ShowcaseView> views = builtinViews();
-    for (ShowcaseView& v : lookViews())
+    for (ShowcaseView& v : lookSheetViews())
         views.push_back(std::move(v));
 #ifdef SKY_HAVE_INGEST
     std::unique_ptr<WeatherSnapshot> gfs;
@@ -366,6 +356,23 @@ int runShowcaseCommand(const ShowcaseOptions& options)
     };
     writeSheet("contact-sheet.png", tiles, captions, 2);
     writeSheet("look-sheet.png", lookTiles, lookCaptions, 3);
+    // Four look views next to the reference path tracer (issue 22), small: the path tracing is most of the
+    // cost (docs/programs.md gives its time on a 2-core CPU).
+    if (code == kExitOk && options.referenceSpp > 0)
+    {
+        const std::string path = options.outDir + "/look-reference-pairs.png";
+        const auto start = std::chrono::steady_clock::now();
+        status = writeLookReferencePairs(renderer, quality, kReferencePairWidth, kReferencePairHeight,
+                                         options.referenceSpp, path);
+        if (!status.ok())
+        {
+            std::fprintf(stderr, "skyservice showcase: reference pairs: %s\n", status.message.c_str());
+            code = kExitRuntime;
+        }
+        else
+            std::printf("wrote %s (%.1f s wall)\n", path.c_str(),
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
     if (options.common.validate && renderer.ctx.validationMessages.load() > 0)
         code = kExitRuntime;
     destroyRenderer(renderer);

@@ -82,4 +82,17 @@ ImageRgba8 makeContactSheet(const std::vector<ImageRgba8>& images, const std::ve
     return sheet;
 }
 
+ImageRgba8 enlargeImage(const ImageRgba8& image, uint32_t factor)
+{
+    factor = std::max(factor, 1u);
+    ImageRgba8 out;
+    out.width = image.width * factor;
+    out.height = image.height * factor;
+    out.pixels.resize(size_t(out.width) * out.height * 4);
+    for (uint32_t y = 0; y < out.height; ++y)
+        for (uint32_t x = 0; x < out.width; ++x)
+            std::copy_n(image.pixel(x / factor, y / factor), 4, out.pixel(x, y));
+    return out;
+}
+
 }  // namespace sky

@@ -31,4 +31,8 @@ inline constexpr uint8_t kContactSheetBackground = 24;       ///< grey level beh
 ImageRgba8 makeContactSheet(const std::vector<ImageRgba8>& images, const std::vector<std::string>& captions,
                             uint32_t columns);
 
+/// `image` enlarged `factor` times (0 is taken as 1) by repeating its pixels, so that a small render reads on a
+/// sheet as what it is: a few pixels, not a blur.
+ImageRgba8 enlargeImage(const ImageRgba8& image, uint32_t factor);
+
 }  // namespace sky

@@ -19,12 +19,19 @@ namespace
 static_assert(sizeof(ReferencePush) == 80, "shaders/shared/reference_params.h: ReferencePush is 5 vec4");
 static_assert(sizeof(ReferencePathState) == 128, "shaders/shared/reference_params.h: 8 vec4, std430");
 
-/// A path that has not finished after this many dispatches is taken for a fault (a pixel's samples take
-/// ~10 dispatches in thick cloud at 64 samples).
-constexpr uint32_t kMaxDispatches = 100000;
+static_assert(sizeof(ReferenceCounters) == 32, "shaders/shared/reference_params.h: 8 uint, std430");
 
-/// The three counters of the shader's StatsBlock.
-constexpr VkDeviceSize kStatsBytes = 3 * sizeof(uint32_t);
+/// The default bound of a render's dispatches (ReferenceSettings::maxDispatches): kMinDispatches plus
+/// kDispatchesPerSample per sample per pixel. Each sample of the slowest pixel takes a few dispatches at many
+/// samples, but the heavy tail of the paths' lengths makes one pixel's first samples slow: from above the
+/// built-in cumulus at 96x54 and 2 samples, 37 dispatches (lavapipe).
+constexpr uint32_t kMinDispatches = 256;
+constexpr uint32_t kDispatchesPerSample = 16;
+
+uint64_t wide(uint32_t low, uint32_t high)
+{
+    return uint64_t(high) << 32 | low;
+}
 
 /// The largest relative density a layer of genus `type` reaches: genusDensityScale, times 1.5 for the
 /// cumulonimbus tower (whose anvilDensity term is at most 1), in shaders/clouds/cloud_density.glsl.
@@ -188,7 +195,7 @@ static SkyStatus uploadLayerBounds(Renderer& r, ReferenceRenderer& ref)
 SkyStatus createReferenceRenderer(Renderer& r, ReferenceRenderer& ref)
 {
     SKY_TRY(createProgram(r.ctx, ref.pathProgram, "reference_path"));
-    return createBuffer(r.ctx, r.memory, ref.stats, kStatsBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+    return createBuffer(r.ctx, r.memory, ref.stats, sizeof(ReferenceCounters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                         MemoryUse::HostVisible, "reference stats");
 }
 
@@ -222,20 +229,21 @@ SkyStatus renderReference(Renderer& r, ReferenceRenderer& ref, const ViewRequest
     SKY_TRY(renderView(r, request, q, result));
     SKY_TRY(ensureSums(r, ref, request.width, request.height));
     SKY_TRY(uploadLayerBounds(r, ref));
-    std::memset(ref.stats.mapped, 0, kStatsBytes);
+    auto* counters = static_cast<ReferenceCounters*>(ref.stats.mapped);
+    std::memset(counters, 0, sizeof(ReferenceCounters));
 
     const FrameContext& frame = recording(r);
     ReferencePush push = makePush(r, settings);
-    auto* counters = static_cast<uint32_t*>(ref.stats.mapped);
     const auto start = std::chrono::steady_clock::now();
     ref.last = ReferenceStats{};
-    for (uint32_t k = 0;; ++k)
+    ref.last.maxDispatches = settings.maxDispatches > 0
+                                 ? settings.maxDispatches
+                                 : kMinDispatches + kDispatchesPerSample * settings.samplesPerPixel;
+    for (uint32_t k = 0; k < ref.last.maxDispatches; ++k)
     {
-        if (k == kMaxDispatches)
-            return SkyStatus::failure("reference: paths unfinished after " + std::to_string(k) + " dispatches",
-                                      VK_ERROR_UNKNOWN);
         push.control.x = k;
-        counters[2] = 0;  // pixels unfinished after this dispatch
+        counters->pixelsUnfinished = 0;
+        counters->samplesUnfinished = 0;
         OneShot shot;
         SKY_TRY(beginOneShot(r.ctx, shot));
         dispatch(r.ctx, shot.cmd, ref.pathProgram, request.width, request.height, 1, push,
@@ -249,12 +257,16 @@ SkyStatus renderReference(Renderer& r, ReferenceRenderer& ref, const ViewRequest
                   DescriptorInfo(ref.layerBounds, r.nearestRepeat)});
         SKY_TRY(endOneShot(r.ctx, shot));
         ref.last.dispatches = k + 1;
-        if (counters[2] == 0)
+        if (counters->pixelsUnfinished == 0)
             break;
     }
     ref.last.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    ref.last.majorantExceeded = counters[0];
-    ref.last.pathsTruncated = counters[1];
+    ref.last.majorantExceeded = counters->majorantExceeded;
+    ref.last.pathsTruncated = counters->pathsTruncated;
+    ref.last.pathsCut = counters->samplesUnfinished;
+    ref.last.paths = uint64_t(request.width) * request.height * settings.samplesPerPixel - ref.last.pathsCut;
+    ref.last.steps = wide(counters->stepsLow, counters->stepsHigh);
+    ref.last.stretchesSkipped = wide(counters->skippedLow, counters->skippedHigh);
 
     // The real-time composite over the path-traced clouds, into the images the frame asked for.
     const FrameOutputs outputs = FrameOutputs::of(request, q);

@@ -45,6 +45,11 @@ struct ReferenceSettings
     /// Scattering events per path at most; a path cut there is counted (ReferenceStats::pathsTruncated).
     /// Light leaving a cloud of optical depth 100 has scattered ~1e3 times.
     uint32_t maxEvents = 20000;
+    /// Dispatches at most: the bound that makes every render finish. A render that reaches it ends with the
+    /// samples done so far (each pixel the average of its own; a pixel with none is left without cloud), and
+    /// counts the samples it dropped (ReferenceStats::pathsCut). 0: 256 + 16 per sample per pixel, several times
+    /// what the slowest views took (reference_renderer.cpp).
+    uint32_t maxDispatches = 0;
     ReferencePhase phase = ReferencePhase::Model;
     double dropletDiameterUm = 20.0;  ///< ReferencePhase::HgDraine: cumulus droplets are 10-20 um
     uint32_t seed = 1;
@@ -58,12 +63,19 @@ struct ReferenceSettings
     int hemisphere = 0;
 };
 
-/// Counters of the last renderReference (each should stay 0; see reference_path.comp.glsl).
+/// What the last renderReference did (reference_path.comp.glsl). The first three should stay 0: a density above
+/// its majorant biases the tracking, a path cut at maxEvents drops its higher orders, a sample cut at
+/// maxDispatches is missing from its pixel.
 struct ReferenceStats
 {
     uint32_t majorantExceeded = 0;  ///< densities above the tracking's majorant (biased)
     uint32_t pathsTruncated = 0;    ///< paths cut at maxEvents
+    uint64_t pathsCut = 0;          ///< samples not traced because the render reached maxDispatches
+    uint64_t paths = 0;             ///< samples traced to their end (pixels x samples per pixel - pathsCut)
+    uint64_t steps = 0;             ///< loop iterations of the paths (a tracking step, a stretch, a start)
+    uint64_t stretchesSkipped = 0;  ///< stretches of ray passed over as empty (column bounds, zero majorant)
     uint32_t dispatches = 0;        ///< dispatches it took
+    uint32_t maxDispatches = 0;     ///< the bound it ran under
     double seconds = 0;             ///< wall time of the path tracing
 };
 
@@ -73,7 +85,7 @@ struct ReferenceRenderer
     Image radianceSum, depthSum;  ///< running sums, RGBA32F and R32F at the view's size
     Buffer paths;                 ///< a ReferencePathState per pixel (shaders/shared/reference_params.h)
     Image layerBounds;            ///< the window's layer bounds: the tracking's majorants (reference_params.h)
-    Buffer stats;                 ///< the shader's three counters, host-visible
+    Buffer stats;                 ///< the shader's ReferenceCounters (reference_params.h), host-visible
     ReferenceStats last;
 };
 

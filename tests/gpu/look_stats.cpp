@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "tests/gpu/look_stats.h"
 
+#include "skyservice/output/cloud_luminance.h"
 #include "tests/gpu/scenes.h"
-
-#include <glm/gtc/packing.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -12,19 +11,6 @@
 
 namespace sky::testscenes
 {
-
-namespace
-{
-
-double median(std::vector<double> v)
-{
-    if (v.empty())
-        return 0.0;
-    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
-    return v[v.size() / 2];
-}
-
-}  // namespace
 
 LookStats measureLook(const ViewRequest& view, const RenderResult& r)
 {
@@ -35,21 +21,14 @@ LookStats measureLook(const ViewRequest& view, const RenderResult& r)
         double luminance, altitudeM;
     };
     std::vector<Pixel> cloud;
-    for (uint32_t y = 0; y < r.height; ++y)
-        for (uint32_t x = 0; x < r.width; ++x)
-        {
-            const size_t i = size_t(y) * r.width + x;
-            const double a = double(glm::unpackHalf1x16(r.cloudRgbaHalf[i * 4 + 3]));
-            if (a <= 0.5)
-                continue;
-            double rgb[3];
-            for (int c = 0; c < 3; ++c)
-                rgb[c] = double(glm::unpackHalf1x16(r.cloudRgbaHalf[i * 4 + size_t(c)])) / a;
-            const glm::dvec3 dir = pixelRayEnu(camera, view, x + 0.5, y + 0.5);
-            const double t = double(r.cloudDepthM[i]);
-            const double altitude = view.pose.altitudeM + t * dir.z + t * t * (1.0 - dir.z * dir.z) / (2.0 * radiusM);
-            cloud.push_back({0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2], altitude});
-        }
+    for (const CloudPixel& p : cloudPixels(r))
+    {
+        const size_t x = p.index % r.width, y = p.index / r.width;
+        const glm::dvec3 dir = pixelRayEnu(camera, view, double(x) + 0.5, double(y) + 0.5);
+        const double t = double(r.cloudDepthM[p.index]);
+        const double altitude = view.pose.altitudeM + t * dir.z + t * t * (1.0 - dir.z * dir.z) / (2.0 * radiusM);
+        cloud.push_back({p.luminance, altitude});
+    }
     LookStats s;
     s.cloudPixels = cloud.size();
     std::vector<double> lum;
@@ -58,7 +37,7 @@ LookStats measureLook(const ViewRequest& view, const RenderResult& r)
         lum.push_back(p.luminance);
         s.meanLuminance += p.luminance / double(cloud.size());
     }
-    s.medianLuminance = median(lum);
+    s.medianLuminance = medianOf(lum);
     std::sort(cloud.begin(), cloud.end(), [](const Pixel& a, const Pixel& b) { return a.altitudeM < b.altitudeM; });
     const size_t fifth = cloud.size() / 5;
     if (fifth > 0)
@@ -73,8 +52,8 @@ LookStats measureLook(const ViewRequest& view, const RenderResult& r)
             highSum += high.back();
         }
         s.undersideOverTopOfMeans = highSum > 0 ? lowSum / highSum : 0.0;
-        s.undersideLuminance = median(low);
-        s.topLuminance = median(high);
+        s.undersideLuminance = medianOf(low);
+        s.topLuminance = medianOf(high);
         s.undersideOverTop = s.topLuminance > 0 ? s.undersideLuminance / s.topLuminance : 0.0;
     }
     return s;

@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Statistics of the cloud pixels of a render, to compare the real-time lighting with the reference path
-// tracer (sky-reference-looks, tests/gpu/test_reference_looks.cpp). Over the cloud pixels (alpha > 0.5 in
-// the render's own cloud image), luminance of the cloud radiance / alpha (Rec. 709 weights, pre-exposed like
-// the EXR files: the same exposure in both renders of a view):
+// tracer (sky-reference-looks, tests/gpu/test_reference_looks.cpp). Over the cloud pixels and their luminance
+// (skyservice/output/cloud_luminance.h):
 //  - median: the median luminance;
 //  - underside/top: the median luminance of the cloud pixels whose first-collision altitude (eye altitude +
 //    depth along the ray, on the sphere) lies in the lowest fifth of those pixels' altitudes, over that of the

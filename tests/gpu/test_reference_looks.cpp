@@ -7,6 +7,7 @@
 // almost nothing and a few carry much, so a sum of few samples mostly falls short. The reference's underside/
 // top ratio of means from below was 0.281 at 8 samples, 0.316 at 16, 0.376 at 32 and 0.407 at 64 (H200); the
 // view from below takes 32 (~25 s on lavapipe). sky-reference-looks prints the medians at more samples.
+#include "skyservice/app/look_views.h"
 #include "skyservice/render/reference_renderer.h"
 #include "skyservice/sky/builtin_weather.h"
 #include "tests/gpu/look_stats.h"
@@ -14,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -71,6 +73,14 @@ protected:
         return p;
     }
 
+    // The look sheet's cumulus from above (skyservice/app/look_views.h) at a small size, path-traced.
+    static SkyStatus renderAbove(const ReferenceSettings& settings, uint32_t width, uint32_t height)
+    {
+        const ViewRequest view = lookViewRequest(*findLookView(lookViews(), "look-cumulus-above"), width, height);
+        RenderResult path;
+        return renderReference(*renderer_, reference_, view, testscenes::testQuality(), settings, path);
+    }
+
     static Renderer* renderer_;
     static ReferenceRenderer reference_;
     static SkyStatus status_;
@@ -104,6 +114,45 @@ TEST_F(ReferenceLooks, CumulusFromAboveMatchesThePathTracedReference)
     ASSERT_GT(p.realTime.cloudPixels, 100u);
     EXPECT_NEAR(p.realTime.meanLuminance / p.reference.meanLuminance, 1.0, 0.25);
     EXPECT_NEAR(p.realTime.undersideOverTopOfMeans / p.reference.undersideOverTopOfMeans, 1.0, 0.35);
+}
+
+// Regression: from above, a stretch step of a path beyond 262 km (where t + 1 cm rounds to t) could stand
+// still and find the same stretch again forever, and a ray leaving a cloud through its base was given a stretch
+// through the earth to the distance limit (reference_media.glsl minimumAdvance, shell.glsl). The view finishes
+// below its dispatch bound with every sample traced, in ~2100 steps a path (lavapipe, 64x36, 2 samples).
+TEST_F(ReferenceLooks, CumulusFromAboveFinishesWithBoundedWork)
+{
+    ASSERT_TRUE(status_.ok()) << status_.message;
+    ReferenceSettings settings;
+    settings.samplesPerPixel = 2;
+    const SkyStatus s = renderAbove(settings, 64, 36);
+    ASSERT_TRUE(s.ok()) << s.message;
+    const ReferenceStats& st = reference_.last;
+    std::printf("dispatches %u of %u; paths %llu, cut %llu; steps %llu (%.0f a path); stretches skipped %llu\n",
+                st.dispatches, st.maxDispatches, (unsigned long long)st.paths, (unsigned long long)st.pathsCut,
+                (unsigned long long)st.steps, double(st.steps) / double(std::max<uint64_t>(st.paths, 1)),
+                (unsigned long long)st.stretchesSkipped);
+    EXPECT_EQ(st.pathsCut, 0u);
+    EXPECT_EQ(st.paths, 64u * 36u * 2u);
+    EXPECT_LT(st.dispatches, st.maxDispatches / 2);
+    EXPECT_LT(double(st.steps) / double(st.paths), 10000.0);
+    EXPECT_GT(st.stretchesSkipped, 0u);
+}
+
+// The dispatch bound ends a render that has not finished, with the samples done so far, and counts the rest.
+TEST_F(ReferenceLooks, DispatchBoundEndsTheRenderAndCountsTheSamplesCut)
+{
+    ASSERT_TRUE(status_.ok()) << status_.message;
+    ReferenceSettings settings;
+    settings.samplesPerPixel = 8;
+    settings.maxDispatches = 1;
+    const SkyStatus s = renderAbove(settings, 32, 18);
+    ASSERT_TRUE(s.ok()) << s.message;
+    const ReferenceStats& st = reference_.last;
+    EXPECT_EQ(st.dispatches, 1u);
+    EXPECT_GT(st.pathsCut, 0u);
+    EXPECT_GT(st.paths, 0u);
+    EXPECT_EQ(st.paths + st.pathsCut, 32u * 18u * 8u);
 }
 
 }  // namespace

@@ -107,6 +107,25 @@ TEST(CloudMath, ShellIntervalCases)
     EXPECT_NEAR(b, std::sqrt(2.0 * 6.371e6 * 2000.0), 200.0);
 }
 
+// Regression: a ray on the shell's base heading down (where the reference tracer looks for the next stretch
+// after a ray leaves a cloud through its base) got the stretch to the far side of the outer sphere, through
+// the earth, up to the distance limit: it has none left. Along the base or upward it still crosses the shell.
+TEST(CloudMath, RayLeavingThroughTheBaseHasNoStretchLeft)
+{
+    const float R = 6.371e6f;
+    float a, b;
+    for (float mu : {-1.0f, -0.3f, -0.01f})
+        EXPECT_FALSE(glsl::rayShellInterval(mu, 1000.0f, 1000.0f, 3000.0f, R, 7e5f, a, b)) << "mu " << mu;
+    // 1 cm above the base, 60 deg below the horizon: 2 cm of shell left.
+    ASSERT_TRUE(glsl::rayShellInterval(-0.5f, 1000.01f, 1000.0f, 3000.0f, R, 7e5f, a, b));
+    EXPECT_NEAR(a, 0.0f, 1e-6f);
+    EXPECT_NEAR(b, 0.02f, 0.002f);
+    ASSERT_TRUE(glsl::rayShellInterval(0.0f, 1000.0f, 1000.0f, 3000.0f, R, 7e5f, a, b));
+    EXPECT_NEAR(b, std::sqrt(2.0 * 6.371e6 * 2000.0), 200.0);
+    ASSERT_TRUE(glsl::rayShellInterval(1.0f, 1000.0f, 1000.0f, 3000.0f, R, 7e5f, a, b));
+    EXPECT_NEAR(b, 2000.0f, 0.01f);
+}
+
 // Regression: an eye at exactly 0 m made downward rays march the whole shell (rayGroundDistance
 // returned -1 for hc <= 0), ~100x slower per pixel.
 TEST(CloudMath, EyeOnTheGroundStopsDownwardRays)

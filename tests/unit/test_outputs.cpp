@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
-// File outputs (skyservice/output/): atomic writes, PNG, EXR and JSON round trips, contact sheets.
+// File outputs (skyservice/output/): atomic writes, PNG, EXR and JSON round trips, contact sheets, cloud luminance.
 #include "skyservice/output/atomic_file.h"
 #include "skyservice/output/bitmap_font.h"
+#include "skyservice/output/cloud_luminance.h"
 #include "skyservice/output/contact_sheet.h"
 #include "skyservice/output/image_files.h"
 
+#include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -334,6 +336,44 @@ TEST(ContactSheet, TilesAndCaptions)
     EXPECT_EQ(sky::makeContactSheet({}, {}, 3).width, 0u);
     const sky::ImageRgba8 one = sky::makeContactSheet({solid(8, 8, 1, 2, 3)}, {}, 0);
     EXPECT_EQ(one.width, 8 + 2 * m);
+}
+
+// Small renders go on the reference-pairs sheet enlarged: each pixel becomes a factor x factor block.
+TEST(ContactSheet, EnlargedImageRepeatsEachPixel)
+{
+    sky::ImageRgba8 two = solid(2, 1, 10, 20, 30);
+    two.pixel(1, 0)[0] = 200;
+    const sky::ImageRgba8 big = sky::enlargeImage(two, 3);
+    ASSERT_EQ(big.width, 6u);
+    ASSERT_EQ(big.height, 3u);
+    EXPECT_EQ(big.pixel(2, 2)[0], 10);
+    EXPECT_EQ(big.pixel(3, 0)[0], 200);
+    EXPECT_EQ(big.pixel(5, 2)[0], 200);
+    EXPECT_EQ(big.pixel(5, 2)[2], 30);
+    EXPECT_EQ(sky::enlargeImage(two, 0).pixels, two.pixels);
+}
+
+// The median cloud luminance of a render (the captions of the reference pairs): over the pixels more than half
+// covered, of radiance / alpha.
+TEST(CloudLuminance, MedianOverThePixelsMoreThanHalfCovered)
+{
+    sky::RenderResult r;
+    r.width = 4;
+    r.height = 1;
+    // Premultiplied grey radiance and alpha: luminance 1 (alpha 1), skipped (0.25), skipped (0.5), 0.5 (0.8).
+    const float pixels[4][2] = {{1.0f, 1.0f}, {0.2f, 0.25f}, {0.5f, 0.5f}, {0.4f, 0.8f}};
+    for (const auto& p : pixels)
+        for (float v : {p[0], p[0], p[0], p[1]})
+            r.cloudRgbaHalf.push_back(glm::packHalf1x16(v));
+    const std::vector<sky::CloudPixel> cloud = sky::cloudPixels(r);
+    ASSERT_EQ(cloud.size(), 2u);
+    EXPECT_EQ(cloud[1].index, 3u);
+    EXPECT_NEAR(cloud[0].luminance, 1.0, 1e-3);
+    EXPECT_NEAR(cloud[1].luminance, 0.5, 1e-3);
+    EXPECT_NEAR(sky::medianCloudLuminance(r), 1.0, 1e-3);  // the upper of two
+    EXPECT_EQ(sky::medianOf({3.0, 1.0, 2.0}), 2.0);
+    r.cloudRgbaHalf.clear();
+    EXPECT_EQ(sky::medianCloudLuminance(r), 0.0);
 }
 
 }  // namespace
