@@ -433,7 +433,8 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             if (deep)
                 litStepM *= frame.detailLod.y;
             if (lightAtCloud.x < 0.0f)
-                lightAtCloud = keyLightAt(dir * t, keyLightDirection());
+                lightAtCloud = keyLightAt(dir * t, keyLightDirection()) *
+                               farShadowTransmittance(dir * t, keyLightDirection(), lightConeReachM());
             // Light the step where the eye sees it: at its mean depth weighted by the transmittance from
             // its start, 1/s - L e^-sL / (1 - e^-sL) (L/2 for a clear step, one mean free path for a
             // dense one).

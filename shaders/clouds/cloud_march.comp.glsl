@@ -55,6 +55,7 @@ shared uint groupLookups;
 #include "shaders/lib/atmosphere_sampling.glsl"
 #include "shaders/clouds/cloud_density.glsl"
 #include "shaders/clouds/light_cone.glsl"
+#include "shaders/clouds/far_shadow.glsl"
 #include "shaders/clouds/empty_space.glsl"
 #include "shaders/clouds/cloud_path.glsl"
 #include "shaders/clouds/cloud_lighting.glsl"

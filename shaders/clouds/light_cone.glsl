@@ -21,6 +21,15 @@ float diffusionFactor(float opticalDepth)
 const float kConeLongSampleSpan = 2.0f;
 const float kConeLongSampleAt = 2.0f;
 
+// How far toward the light a cone looks (m): the end of its long sample's span, 3 C for steps covering C
+// (far_shadow.glsl takes over from there).
+float lightConeReachM()
+{
+    uint n = min(frame.march.y, 6u);
+    float coveredM = frame.phaseTerms.w * float(n * (n + 1u) / 2u);
+    return (kConeLongSampleAt + 0.5f * kConeLongSampleSpan) * coveredM;
+}
+
 // Offsets that spread the six light samples over a cone (unit-length-ish, fixed so frames agree).
 const vec3 kConeKernel[6] = vec3[](vec3(0.38f, -0.52f, 0.29f), vec3(-0.71f, 0.12f, -0.44f),
                                   vec3(0.15f, 0.83f, -0.31f), vec3(-0.27f, -0.36f, 0.88f),
