@@ -283,7 +283,15 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
     // lastEmptyT stays empty, t in the cloud.
     float lastEmptyT = tEnter;
     bool afterEmpty = true;     // the view sample before this one found no cloud
-    vec3 lightAtCloud = vec3(-1.0f);  // the key light at the ray's first lit sample; < 0: none yet
+    // The radiance is summed as three scalars, not as a colour: every lit sample's light is the key light
+    // at the ray's first lit sample (at litFirstT; < 0: none yet) times what its octaves pass
+    // (directSum), plus the ambient light, linear in the height fraction (ambientSum, ambientHeightSum).
+    // The key light and its far shadow (far_shadow.glsl) are then taken once, after the loop: inside it
+    // the far shadow's lookups spilled registers and cost the march 7-10 % on the H200.
+    float litFirstT = -1.0f;
+    float directSum = 0.0f;
+    float ambientSum = 0.0f;
+    float ambientHeightSum = 0.0f;
     // The lit view sample whose light cone is being marched. During a bisection these three hold the sample
     // at t instead (its density, rain rate and height fraction): the two are never needed at once,
     // and each variable carried through the loop holds a register all the way (BENCHMARKS.md).
@@ -432,9 +440,8 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             }
             if (deep)
                 litStepM *= frame.detailLod.y;
-            if (lightAtCloud.x < 0.0f)
-                lightAtCloud = keyLightAt(dir * t, keyLightDirection()) *
-                               farShadowTransmittance(dir * t, keyLightDirection(), lightConeReachM());
+            if (litFirstT < 0.0f)
+                litFirstT = t;
             // Light the step where the eye sees it: at its mean depth weighted by the transmittance from
             // its start, 1/s - L e^-sL / (1 - e^-sL) (L/2 for a clear step, one mean free path for a
             // dense one).
@@ -466,10 +473,10 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             lastConeDepth = diffusionDepth;
         }
         float cosTheta = dot(dir, keyLightDirection());
-        vec3 source = litSigmaS * (lightAtCloud * multipleScattering(lightDepth, diffusionDepth, cosTheta,
-                                                                     litSigmaS * 100.0f) +
-                                   ambientLight(litHeightFraction));
-        radiance += transmittance * integrateScattering(source, litSigmaE, litStepM);
+        float weight = transmittance * litSigmaS * integrateScattering(vec3(1.0f), litSigmaE, litStepM).x;
+        directSum += weight * multipleScattering(lightDepth, diffusionDepth, cosTheta, litSigmaS * 100.0f);
+        ambientSum += weight;
+        ambientHeightSum += weight * litHeightFraction;
         float next = transmittance * exp(-litSigmaE * litStepM);
         depthWeighted += (transmittance - next) * t;
         if (frontM == 0.0f && next <= 1.0f - kCloudFrontOpacity)
@@ -479,5 +486,12 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             break;
         t += litStepM;
         state = MARCH_FULL;
+    }
+    if (litFirstT >= 0.0f)
+    {
+        vec3 p = dir * litFirstT;
+        vec3 keyLight = keyLightAt(p, keyLightDirection()) * farShadowTransmittance(p, keyLightDirection(), lightConeReachM());
+        radiance += keyLight * directSum + ambientLight(0.0f) * (ambientSum - ambientHeightSum) +
+                    ambientLight(1.0f) * ambientHeightSum;
     }
 }
