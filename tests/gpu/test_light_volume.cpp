@@ -73,8 +73,11 @@ void LightVolume::expectMatchesMarchedCone(const WeatherSnapshot& weather, const
     EXPECT_GE(psnr, minPsnrDb);
 }
 
-// Scattered cumulus 1-5 km from an eye below them, sun at 35 degrees. Measured on lavapipe: 32.8 dB (33.8
-// under the earlier light); against the largest channel, 33.6 dB when the volume held optical depth instead
+// Scattered cumulus 1-5 km from an eye below them, sun at 35 degrees. Measured on lavapipe: 31.4 dB with the
+// diffuse remainder's k = 0.3 (light_cone.glsl; 31.8 with k = 0.2, 32.8 when the limit of 31.5 was
+// set: the diffusion factor that the volume interpolates over its 160 m texels falls
+// faster with k), so the limit is 31.0, 0.5 dB under the earlier one (33.8 under the earlier light);
+// against the largest channel, 33.6 dB when the volume held optical depth instead
 // of transmittance (too dark where texels straddle a cloud edge; 38.6 with transmittance then).
 TEST_F(LightVolume, CloudsSeenFromBelowMatchTheMarchedCone)
 {
@@ -82,7 +85,7 @@ TEST_F(LightVolume, CloudsSeenFromBelowMatchTheMarchedCone)
     v.width = 160;
     v.height = 90;
     v.unixTimeS = timeOfSunElevation(45.0, 7.0, "2026-06-21T12:00:00Z", 35.0);
-    expectMatchesMarchedCone(uniformLayer(0.5f, CloudType::Cumulus, 1200.0f, 2800.0f), v, 500u, 31.5, "from below");
+    expectMatchesMarchedCone(uniformLayer(0.5f, CloudType::Cumulus, 1200.0f, 2800.0f), v, 500u, 31.0, "from below");
 }
 
 // A deck seen from above (an eye at 4000 m over a stratocumulus deck 2-3 km below): the long sample of
