@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "tests/gpu/image_compare.h"
 
+#include "skyservice/output/contact_sheet.h"
 #include "skyservice/output/image_files.h"
 #include "tests/gpu/scenes.h"
 
@@ -174,16 +175,12 @@ double psnrResampled(const Resampled& test, const RenderResult& reference)
 
 void writeDisplayPng(const RenderResult& r, const std::string& path, uint32_t scale)
 {
-    ImageRgba8 image;
-    image.width = r.width * scale;
-    image.height = r.height * scale;
-    image.pixels.resize(size_t(image.width) * image.height * 4);
-    for (uint32_t y = 0; y < image.height; ++y)
-        for (uint32_t x = 0; x < image.width; ++x)
-            for (size_t c = 0; c < 4; ++c)
-                image.pixel(x, y)[c] = r.displayRgba8[(size_t(y / scale) * r.width + x / scale) * 4 + c];
+    ImageRgba8 display;
+    display.width = r.width;
+    display.height = r.height;
+    display.pixels = r.displayRgba8;
     std::string error;
-    if (!writePng(path, image, error))
+    if (!writePng(path, enlargeImage(display, scale), error))
         std::printf("could not write %s: %s\n", path.c_str(), error.c_str());
 }
 
