@@ -12,7 +12,7 @@
 // screen, when the previous depth there disagrees with the expected one (disocclusion), or when it
 // lies outside the range of the fresh 3x3 neighbourhood (colour clamp); a rejected pixel takes its
 // nearest fresh pixel's value, a pixel without any history (off the previous screen, or no history)
-// the fresh pixels interpolated. The result is this frame's cloud history, packed in 64 bits a texel
+// the fresh pixels interpolated. The result is this frame's cloud history, 8 bytes a texel in two images
 // (shaders/lib/cloud_history.glsl): the composite reads the pixels not marched this frame from it (the
 // marched ones from the fresh image, at full precision), and the next frame reprojects it.
 //
@@ -33,15 +33,17 @@ layout(local_size_x = WORKGROUP_SIZE_2D, local_size_y = WORKGROUP_SIZE_2D) in;
 layout(binding = 0, std140) PARAMS_BLOCK FrameBlock { FrameParams frame; };
 layout(binding = 1, rgba16f) uniform readonly image2D freshCloud;   // block resolution
 layout(binding = 2, r32f) uniform readonly image2D freshDepth;      // block resolution
-// The previous frame's cloud radiance, alpha and depth, full resolution, packed (cloud_history.glsl).
-layout(binding = 3, rgba16ui) uniform readonly uimage2D historyIn;
-// This frame's: the composite reads it (for the pixels not marched this frame), the next frame reprojects it.
-layout(binding = 4, rgba16ui) uniform writeonly uimage2D historyOut;
-// The depth layer's front distance (FRAME_FLAG_DEPTH_LAYER; 1x1 stand-ins otherwise): the march's fresh
-// fronts (block resolution) and a history of its own beside the packed one, carried the way the depth is.
-layout(binding = 5, r32f) uniform readonly image2D freshFront;
-layout(binding = 6, r32f) uniform readonly image2D frontHistoryIn;
-layout(binding = 7, r32f) uniform writeonly image2D frontHistoryOut;
+// The previous frame's cloud history, full resolution (shaders/lib/cloud_history.glsl): sampled views the
+// texture unit decodes (colour E5B9G9R9, alpha and depth code R16G16_UNORM), bilinear, clamped to the edge.
+layout(binding = 3) uniform sampler2D historyColourIn;
+layout(binding = 4) uniform sampler2D historyAlphaDepthIn;
+// This frame's, as plain bits: the composite reads it (for the pixels not marched this frame), the next
+// frame reprojects it.
+layout(binding = 5, r32ui) uniform writeonly uimage2D historyColourOut;
+layout(binding = 6, r32ui) uniform writeonly uimage2D historyAlphaDepthOut;
+layout(binding = 7, r32f) uniform readonly image2D freshFront;
+layout(binding = 8, r32f) uniform readonly image2D frontHistoryIn;
+layout(binding = 9, r32f) uniform writeonly image2D frontHistoryOut;
 
 #include "shaders/clouds/view_ray.glsl"
 #include "shaders/lib/new_lines.glsl"
@@ -62,53 +64,49 @@ const float kClampMargin = 0.02f;
 // History within this many pixels of where it was counts as still (not colour-clamped).
 const float kStillPx = 0.01f;
 
-vec4 historyCloud(ivec2 p)
+// The previous frame's cloud (premultiplied radiance, alpha) interpolated bilinearly at `uv` (normalized).
+vec4 historySample(vec2 uv)
 {
-    float depthM;
-    return unpackCloudHistory(imageLoad(historyIn, p), depthM);
+    return vec4(textureLod(historyColourIn, uv, 0.0f).rgb, textureLod(historyAlphaDepthIn, uv, 0.0f).x);
 }
 
 // Read of the previous cloud image at pixel coordinates `q` (premultiplied colour and alpha interpolate
 // correctly). Catmull-Rom, not bilinear: a pixel lives on in the history for up to B x B frames and is
 // resampled in each of them; bilinear weights blur it every time, and in a 60 deg/s turn the display lost
 // ~30 % of its detail against a full render (tests/gpu/test_flight_path.cpp, sharpness.h), which the
-// cubic's negative lobes keep. Twelve taps, not sixteen: the four corners of the 4x4 stencil carry
-// weights of at most 0.0055 (w0 w0, w0 w3, ...), left out and the rest renormalized; each tap costs about
-// 2 us per 1080p frame on an H200 (BENCHMARKS.md). Its overshoot is cut at 0 and at alpha 1; the colour
-// clamp against the fresh neighbourhood follows. Where the four nearest texels hold no cloud the result
-// is 0 whatever the outer ones hold (their weights are never positive), so clear sky reads four texels.
+// cubic's negative lobes keep. The 4x4 stencil without its corners (their weights, w0 w0, w0 w3, ..., are
+// at most 0.0055; left out and the rest renormalized) is five bilinear reads: the inner 2x2 texels in one
+// (the pair of weights w1, w2 of an axis is one read at w2 / (w1 + w2) between them, weighing w1 + w2),
+// and each side's pair of the outer ring in one. The texture unit decodes and weighs the texels; unpacking
+// twelve texels by hand and weighing them cost 17-30 us a 1080p frame on an H200 over a bilinear read
+// (BENCHMARKS.md). Its weights are rounded to 1/256 on common GPUs: the read is then off by at most 1/512 of
+// the step between neighbouring texels. The overshoot is cut at 0 and at alpha 1; the colour clamp against
+// the fresh neighbourhood follows. Where the inner read holds no cloud the result is 0 whatever the outer
+// texels hold (their weights are never positive), so clear sky costs one read of each image.
 vec4 cubicHistory(vec2 q)
 {
     vec2 t = q - 0.5f;
-    ivec2 i1 = ivec2(floor(t));
-    vec2 f = t - vec2(i1);
-    ivec2 top = ivec2(frame.image.xy) - 1;
-    vec4 c11 = historyCloud(clamp(i1, ivec2(0), top));
-    vec4 c21 = historyCloud(clamp(i1 + ivec2(1, 0), ivec2(0), top));
-    vec4 c12 = historyCloud(clamp(i1 + ivec2(0, 1), ivec2(0), top));
-    vec4 c22 = historyCloud(clamp(i1 + ivec2(1, 1), ivec2(0), top));
-    if (max(max(c11.w, c21.w), max(c12.w, c22.w)) <= 0.0f)
-        return vec4(0.0f);
+    vec2 i1 = floor(t);
+    vec2 f = t - i1;
     // Catmull-Rom weights of the taps at -1, 0, 1, 2 for the fractions f.x and f.y.
     vec2 f2 = f * f, f3 = f2 * f;
     vec2 w0 = 0.5f * (-f3 + 2.0f * f2 - f);
     vec2 w1 = 0.5f * (3.0f * f3 - 5.0f * f2 + 2.0f);
     vec2 w2 = 0.5f * (-3.0f * f3 + 4.0f * f2 + f);
     vec2 w3 = 0.5f * (f3 - f2);
-    vec4 sum = w1.y * (w1.x * c11 + w2.x * c21) + w2.y * (w1.x * c12 + w2.x * c22);
-    // The outer ring without its corners: rows -1 and 2 and columns -1 and 2, each at the inner two taps.
-    float wsum = (w1.y + w2.y) * (w1.x + w2.x);
-    for (int k = 1; k < 3; ++k)
-    {
-        float wxk = k == 1 ? w1.x : w2.x;
-        sum += w0.y * wxk * historyCloud(clamp(i1 + ivec2(k - 1, -1), ivec2(0), top));
-        sum += w3.y * wxk * historyCloud(clamp(i1 + ivec2(k - 1, 2), ivec2(0), top));
-        float wy = k == 1 ? w1.y : w2.y;
-        sum += w0.x * wy * historyCloud(clamp(i1 + ivec2(-1, k - 1), ivec2(0), top));
-        sum += w3.x * wy * historyCloud(clamp(i1 + ivec2(2, k - 1), ivec2(0), top));
-        wsum += (w0.y + w3.y) * wxk + (w0.x + w3.x) * wy;
-    }
-    sum /= wsum;
+    vec2 w12 = w1 + w2;  // >= 1 (w0, w3 <= 0 and the four sum to 1)
+    vec2 toUv = 1.0f / vec2(frame.image.xy);
+    vec2 uvInner = (i1 + 0.5f + w2 / w12) * toUv;  // texel i1's centre is at i1 + 0.5
+    vec2 uvBefore = (i1 - 0.5f) * toUv;            // the centre of texel i1 - 1 (clamped to the edge)
+    vec2 uvAfter = (i1 + 2.5f) * toUv;             // of texel i1 + 2
+    vec4 inner = historySample(uvInner);
+    if (inner.w <= 0.0f)
+        return vec4(0.0f);
+    vec4 sum = w12.x * (w12.y * inner + w0.y * historySample(vec2(uvInner.x, uvBefore.y)) +
+                        w3.y * historySample(vec2(uvInner.x, uvAfter.y))) +
+               w12.y * (w0.x * historySample(vec2(uvBefore.x, uvInner.y)) +
+                        w3.x * historySample(vec2(uvAfter.x, uvInner.y)));
+    sum /= w12.x * (w12.y + w0.y + w3.y) + w12.y * (w0.x + w3.x);
     return vec4(max(sum.xyz, vec3(0.0f)), clamp(sum.w, 0.0f, 1.0f));
 }
 
@@ -205,13 +203,13 @@ vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
     vec3 v = dir;
     bool onScreen = frame.reprojection.w != 0u && projectPrevious(v, q);
     ivec2 texel = ivec2(q);
-    uvec4 previousTexel = uvec4(0u);
+    vec2 previousAlphaDepth = vec2(0.0f);  // at `texel`: alpha, depth channel (cloud_history.glsl)
     float previousDepth = 0.0f;
     float depthGuess = 0.0f;
     if (onScreen)
     {
-        previousTexel = imageLoad(historyIn, texel);
-        unpackCloudHistory(previousTexel, previousDepth);
+        previousAlphaDepth = texelFetch(historyAlphaDepthIn, texel, 0).xy;
+        previousDepth = historyDepthM(previousAlphaDepth.y);
         // The previous depth is measured from the previous eye: the distance from this eye.
         depthGuess = previousDepth > 0.0f ? length(frame.previousEye.xyz + normalize(v) * previousDepth) : 0.0f;
     }
@@ -224,9 +222,9 @@ vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
             if (ivec2(q) != texel)
             {
                 texel = ivec2(q);
-                previousTexel = imageLoad(historyIn, texel);
+                previousAlphaDepth = texelFetch(historyAlphaDepthIn, texel, 0).xy;
+                previousDepth = historyDepthM(previousAlphaDepth.y);
             }
-            unpackCloudHistory(previousTexel, previousDepth);
             depthGuess = previousDepth > 0.0f ? length(frame.previousEye.xyz + normalize(v) * previousDepth) : 0.0f;
         }
     }
@@ -236,10 +234,9 @@ vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
     {
         // A pixel that lands where it was (a still view) keeps its history whatever its neighbours say:
         // it was marched at this very place, and the 16-frame refresh brings in what changed since.
-        // Its history is the texel just read (q lies within kStillPx of this pixel's centre).
+        // Its history is the texel whose depth was just read (q lies within kStillPx of this pixel's centre).
         bool still = distance(q, vec2(pixel) + 0.5f) < kStillPx;
-        float unusedDepthM;
-        previous = still ? unpackCloudHistory(previousTexel, unusedDepthM) : cubicHistory(q);
+        previous = still ? vec4(texelFetch(historyColourIn, texel, 0).rgb, previousAlphaDepth.x) : cubicHistory(q);
         // Disocclusion: the fixed point did not settle: the refined depth, seen from the previous eye,
         // disagrees with the previous depth found there (the ray crossed a cloud edge of another distance).
         if (previousDepth > 0.0f && depthGuess > 0.0f)
@@ -303,7 +300,8 @@ void main()
         }
         else
             cloud = reconstructPixel(pixel, block, phase, B, box, depthM, frontM);
-        imageStore(historyOut, pixel, packCloudHistory(cloud, depthM));
+        imageStore(historyColourOut, pixel, uvec4(packHistoryColour(cloud.rgb), 0u, 0u, 0u));
+        imageStore(historyAlphaDepthOut, pixel, uvec4(packHistoryAlphaDepth(cloud.a, depthM), 0u, 0u, 0u));
         // As the march's (cloud_path.glsl cloudDepthLayer): never beyond the depth, the depth where there
         // is none (a history made before the layer was asked for holds 0), 0 without cloud.
         if ((frame.image.w & FRAME_FLAG_DEPTH_LAYER) != 0u)

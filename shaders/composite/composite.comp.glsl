@@ -22,24 +22,26 @@ layout(binding = 3) uniform sampler2D skyViewLut;
 layout(binding = 4) uniform sampler3D aerialInscatterLut;
 layout(binding = 5) uniform sampler3D aerialTransmittanceLut;
 // Full-resolution frames: the march's cloud image and depth. Reprojected frames (FRAME_FLAG_REPROJECTED):
-// the block-resolution fresh pixels, and the packed history of the pixels not marched this frame.
+// the block-resolution fresh pixels, and the history of the pixels not marched this frame (sampled views
+// the texture unit decodes: shaders/lib/cloud_history.glsl).
 layout(binding = 6, rgba16f) uniform readonly image2D cloudIn;
 layout(binding = 7, r32f) uniform readonly image2D depthIn;
-layout(binding = 8, rgba16ui) uniform readonly uimage2D historyIn;  // 1x1 stand-in in full-resolution frames
+layout(binding = 8) uniform sampler2D historyColourIn;  // 1x1 stand-ins in full-resolution frames
+layout(binding = 9) uniform sampler2D historyAlphaDepthIn;
 // The linear frame only when a caller reads it (FRAME_FLAG_NO_LINEAR_OUTPUT clear): 16.6 MB at 1080p.
-layout(binding = 9, rgba16f) uniform writeonly image2D linearOut;
-layout(binding = 10, rgba8) uniform writeonly image2D displayOut;
+layout(binding = 10, rgba16f) uniform writeonly image2D linearOut;
+layout(binding = 11, rgba8) uniform writeonly image2D displayOut;
 // Compositing layers and the reprojected frame's cloud image, each only when asked for (FRAME_FLAG_*).
-layout(binding = 11, rgba16f) uniform writeonly image2D skyOut;
-layout(binding = 12, rgba16f) uniform writeonly image2D cloudLayerOut;
-layout(binding = 13, rgba16f) uniform writeonly image2D cloudOut;
-layout(binding = 14, r32f) uniform writeonly image2D depthOut;
+layout(binding = 12, rgba16f) uniform writeonly image2D skyOut;
+layout(binding = 13, rgba16f) uniform writeonly image2D cloudLayerOut;
+layout(binding = 14, rgba16f) uniform writeonly image2D cloudOut;
+layout(binding = 15, r32f) uniform writeonly image2D depthOut;
 // The depth layer (FRAME_FLAG_DEPTH_LAYER; 1x1 stand-ins otherwise): the march's fronts (full resolution,
 // or block resolution in reprojected frames), the front history of the pixels not marched this frame, and
 // the layer: R the cloud's front, G its transmittance-weighted distance (m).
-layout(binding = 15, r32f) uniform readonly image2D frontIn;
-layout(binding = 16, r32f) uniform readonly image2D frontHistoryIn;
-layout(binding = 17, rg32f) uniform writeonly image2D depthLayerOut;
+layout(binding = 16, r32f) uniform readonly image2D frontIn;
+layout(binding = 17, r32f) uniform readonly image2D frontHistoryIn;
+layout(binding = 18, rg32f) uniform writeonly image2D depthLayerOut;
 
 #include "shaders/lib/atmosphere_sampling.glsl"
 #include "shaders/clouds/view_ray.glsl"
@@ -94,7 +96,9 @@ void main()
     }
     else
     {
-        cloud = unpackCloudHistory(imageLoad(historyIn, pixel), depth);
+        vec2 alphaDepth = texelFetch(historyAlphaDepthIn, pixel, 0).xy;
+        cloud = vec4(texelFetch(historyColourIn, pixel, 0).rgb, alphaDepth.x);
+        depth = historyDepthM(alphaDepth.y);
         fresh = false;
     }
     vec3 color = sky;
@@ -116,7 +120,7 @@ void main()
     if ((frame.image.w & FRAME_FLAG_DEPTH_LAYER) != 0u)
     {
         float front = fresh ? imageLoad(frontIn, source).x : imageLoad(frontHistoryIn, pixel).x;
-        // The packed history's depth is rounded (cloud_history.glsl): the front stays in front of it.
+        // The history's depth is rounded (cloud_history.glsl): the front stays in front of it.
         imageStore(depthLayerOut, pixel, vec4(min(front, depth), depth, 0.0f, 0.0f));
     }
     if ((frame.image.w & FRAME_FLAG_WRITE_CLOUD) != 0u)

@@ -5,6 +5,7 @@
 // stand-ins bound where a frame has nothing to read or write.
 #pragma once
 
+#include "skyservice/render/cloud_history_images.h"
 #include "skyservice/render/render_types.h"
 #include "skyservice/vk/programs.h"
 
@@ -24,7 +25,8 @@ struct CompositePass
     Image depthLayerImage;
     // 1x1 images bound where a pass has nothing to read or write (every binding needs an image): the
     // optional outputs when none is asked for, the history in full-resolution frames.
-    Image linearStandIn, historyStandIn, depthStandIn, depthLayerStandIn;
+    Image linearStandIn, depthStandIn, depthLayerStandIn;
+    CloudHistoryImages historyStandIn;
 };
 
 /// Loads the program and makes the stand-ins (layout GENERAL); the frame-size images come with the first frame.
@@ -37,7 +39,7 @@ struct CompositeImages
 {
     const Image* cloud = nullptr;    ///< the march's cloud image (block resolution in reprojected frames)
     const Image* depth = nullptr;    ///< ... and its depth
-    const Image* history = nullptr;  ///< the packed history of the pixels not marched (stand-in: full frames)
+    const CloudHistoryImages* history = nullptr;  ///< of the pixels not marched (stand-in: full frames)
     const Image* linear = nullptr;   ///< linear frame (FRAME_FLAG_NO_LINEAR_OUTPUT clear)
     const Image* sky = nullptr;      ///< FRAME_FLAG_SKY_LAYER
     const Image* cloudLayer = nullptr;  ///< FRAME_FLAG_CLOUD_LAYER

@@ -109,15 +109,16 @@ SkyStatus ensureReprojectionImages(Renderer& r, uint32_t width, uint32_t height,
     std::vector<Image*> made, cleared;
     ImageDesc d;
     d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-    if (!hasSize(r.reconstruct.history[0], width, height))
+    if (!hasSize(r.reconstruct.history[0].colour, width, height))
     {
         VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize only: never in steady state
         r.reconstruct.reprojection.valid = false;
-        d.width = width;
-        d.height = height;
-        d.format = VK_FORMAT_R16G16B16A16_UINT;  // shaders/lib/cloud_history.glsl
-        for (Image& h : r.reconstruct.history)
-            SKY_TRY(remake(r, h, d, "cloud history (radiance, alpha, depth packed)", made));
+        for (CloudHistoryImages& h : r.reconstruct.history)
+        {
+            SKY_TRY(remake(r, h.colour, cloudHistoryColourDesc(width, height), "cloud history radiance", made));
+            SKY_TRY(remake(r, h.alphaDepth, cloudHistoryAlphaDepthDesc(width, height), "cloud history alpha and depth",
+                           made));
+        }
         for (Image& h : r.reconstruct.frontHistory)
             destroyImage(r.ctx, r.memory, h);
     }

@@ -14,7 +14,8 @@ SkyStatus createReconstructPass(const Context& ctx, ReconstructPass& pass)
 
 void destroyReconstructPass(const Context& ctx, MemoryTracker& memory, ReconstructPass& pass)
 {
-    for (Image* img : {&pass.freshCloudImage, &pass.freshDepthImage, &pass.history[0], &pass.history[1],
+    for (Image* img : {&pass.freshCloudImage, &pass.freshDepthImage, &pass.history[0].colour,
+                       &pass.history[0].alphaDepth, &pass.history[1].colour, &pass.history[1].alphaDepth,
                        &pass.freshFrontImage, &pass.frontHistory[0], &pass.frontHistory[1]})
         destroyImage(ctx, memory, *img);
     destroyProgram(ctx, pass.program);
@@ -32,8 +33,9 @@ void recordReconstruct(Renderer& r, const FrameContext& frame, VkCommandBuffer c
     const Image& standIn = r.composite.depthStandIn;
     dispatch(r.ctx, cmd, pass.program, quadsX, quadsY, 1, nullptr, 0,
              {DescriptorInfo(frame.frameUniforms), DescriptorInfo(pass.freshCloudImage),
-              DescriptorInfo(pass.freshDepthImage), DescriptorInfo(pass.history[prev]),
-              DescriptorInfo(pass.history[next]), DescriptorInfo(front ? pass.freshFrontImage : standIn),
+              DescriptorInfo(pass.freshDepthImage), DescriptorInfo(pass.history[prev].colour, r.linearClamp),
+              DescriptorInfo(pass.history[prev].alphaDepth, r.linearClamp), DescriptorInfo(pass.history[next].colour),
+              DescriptorInfo(pass.history[next].alphaDepth), DescriptorInfo(front ? pass.freshFrontImage : standIn),
               DescriptorInfo(front ? pass.frontHistory[prev] : standIn),
               DescriptorInfo(front ? pass.frontHistory[next] : standIn)});
     computeBarrier(cmd);

@@ -4,6 +4,7 @@
 // packed history of the last two frames, and what the renderer remembers of the last reprojected frame.
 #pragma once
 
+#include "skyservice/render/cloud_history_images.h"
 #include "skyservice/render/frame_context.h"
 #include "skyservice/render/reprojection.h"
 #include "skyservice/vk/programs.h"
@@ -18,11 +19,11 @@ struct ReconstructPass
     Program program;
     /// This frame's marched pixels, one per block, at the size of the block in use (frame_images.h).
     Image freshCloudImage, freshDepthImage;
-    /// The reconstructed cloud radiance, alpha and depth of the last two frames (ping-pong), packed in one
-    /// 64-bit texel (shaders/lib/cloud_history.glsl); made on the first reprojected frame.
-    Image history[2];
+    /// The reconstructed cloud radiance, alpha and depth of the last two frames (ping-pong), 8 bytes a
+    /// texel (cloud_history_images.h); made on the first reprojected frame.
+    CloudHistoryImages history[2];
     /// The depth layer's front distance: the fresh pixels' (block resolution) and its own full-resolution
-    /// history beside the packed one (R32F, ping-pong with it); made while frames draw the layer (zero at
+    /// history beside the radiance's (R32F, ping-pong with it); made while frames draw the layer (zero at
     /// first: the reconstruct pass then takes the depth), let go when they stop.
     Image freshFrontImage, frontHistory[2];
     ReprojectionHistory reprojection;  ///< which history image holds which frame, and whether it is usable

@@ -52,7 +52,11 @@ struct DescriptorInfo
     VkDescriptorBufferInfo buffer = {};
 
     DescriptorInfo(const Image& img) { image = {VK_NULL_HANDLE, img.view, VK_IMAGE_LAYOUT_GENERAL}; }
-    DescriptorInfo(const Image& img, VkSampler sampler) { image = {sampler, img.view, VK_IMAGE_LAYOUT_GENERAL}; }
+    /// Sampled: through the image's sampled view where it has one (ImageDesc::sampledFormat).
+    DescriptorInfo(const Image& img, VkSampler sampler)
+    {
+        image = {sampler, img.sampledView ? img.sampledView : img.view, VK_IMAGE_LAYOUT_GENERAL};
+    }
     DescriptorInfo(const Buffer& buf) { buffer = {buf.buffer, 0, buf.size}; }
 };
 

@@ -95,6 +95,7 @@ uint32_t formatBytes(VkFormat format)
     case VK_FORMAT_R8G8B8A8_SRGB:
     case VK_FORMAT_R32_SFLOAT:
     case VK_FORMAT_R16G16_SFLOAT:
+    case VK_FORMAT_R32_UINT:
         return 4;
     case VK_FORMAT_R16G16B16A16_SFLOAT:
     case VK_FORMAT_R32G32_SFLOAT:
@@ -170,6 +171,8 @@ SkyStatus createImage(const Context& ctx, MemoryTracker& tracker, Image& out, co
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
     info.usage = desc.usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    if (desc.sampledFormat != VK_FORMAT_UNDEFINED)
+        info.flags |= VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT;
     VK_TRY(vkCreateImage(ctx.device, &info, nullptr, &out.image));
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(ctx.device, out.image, &req);
@@ -188,6 +191,16 @@ SkyStatus createImage(const Context& ctx, MemoryTracker& tracker, Image& out, co
     viewInfo.format = desc.format;
     viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, info.arrayLayers};
     VK_CHECK(vkCreateImageView(ctx.device, &viewInfo, nullptr, &out.view));
+    if (desc.sampledFormat != VK_FORMAT_UNDEFINED)
+    {
+        // Sampling only: the sampled format need not support the image's storage usage.
+        VkImageViewUsageCreateInfo usage = {VK_STRUCTURE_TYPE_IMAGE_VIEW_USAGE_CREATE_INFO};
+        usage.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+        viewInfo.pNext = &usage;
+        viewInfo.format = desc.sampledFormat;
+        VK_CHECK(vkCreateImageView(ctx.device, &viewInfo, nullptr, &out.sampledView));
+        setObjectName(ctx, VK_OBJECT_TYPE_IMAGE_VIEW, uint64_t(out.sampledView), name);
+    }
 
     out.format = desc.format;
     out.viewType = desc.viewType;
@@ -204,6 +217,8 @@ void destroyImage(const Context& ctx, MemoryTracker& tracker, Image& image)
 {
     if (image.view)
         vkDestroyImageView(ctx.device, image.view, nullptr);
+    if (image.sampledView)
+        vkDestroyImageView(ctx.device, image.sampledView, nullptr);
     if (image.image)
         vkDestroyImage(ctx.device, image.image, nullptr);
     release(ctx, tracker, image.memory, image.bytes, image.name);

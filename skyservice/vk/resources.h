@@ -41,6 +41,9 @@ struct Image
 {
     VkImage image = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
+    /// A second view in ImageDesc::sampledFormat for sampling (null without one): the texture unit
+    /// decodes and filters a format the shaders write as plain bits through `view`.
+    VkImageView sampledView = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D;
@@ -75,6 +78,9 @@ struct ImageDesc
     uint32_t width = 1, height = 1, depth = 1;  ///< depth only for 3D
     uint32_t layers = 1;                         ///< only for 2D_ARRAY
     VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    /// A format of the same size class as `format` to sample the image as (Image::sampledView; the image
+    /// is then made with VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT), or UNDEFINED for none.
+    VkFormat sampledFormat = VK_FORMAT_UNDEFINED;
 };
 
 /// Creates an image and its view (layout UNDEFINED). On failure returns the error and leaves `out` empty.
