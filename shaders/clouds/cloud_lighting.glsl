@@ -197,7 +197,7 @@ float multipleScattering(float opticalDepth, float diffusionDepth, float cosThet
         c *= frame.lightingTerms.z;
     }
     sum += b / max(1.0f - frame.lightingTerms.y, 0.05f) * (0.25f / 3.14159265f) * diffusion;
-    float powder = 0.5f * beerPowder(localOpticalDepth) / max(exp(-localOpticalDepth), 1e-6f);
+    float powder = 1.0f - exp(-2.0f * localOpticalDepth);  // 0.5 beerPowder(d) / e^-d
     float powderWeight = frame.lightingTerms.w * saturate1(0.5f - 0.5f * cosTheta);
     return sum * mix(1.0f, powder, powderWeight);
 }

@@ -5,7 +5,7 @@
 // One invocation per texel.
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#extension GL_EXT_control_flow_attributes : require  // [[dont_unroll]] in cloud_density.glsl
+#extension GL_EXT_control_flow_attributes : require  // [[unroll]] in cloud_density.glsl
 
 #include "shaders/shared/frame_params.h"
 #include "shaders/shared/weather_window.h"

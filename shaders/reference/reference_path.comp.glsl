@@ -18,7 +18,7 @@
 // that meets no cloud adds nothing (the composite draws the sky and ground behind).
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#extension GL_EXT_control_flow_attributes : require  // [[dont_unroll]] in cloud_density.glsl
+#extension GL_EXT_control_flow_attributes : require  // [[unroll]] in cloud_density.glsl
 
 #include "shaders/shared/frame_params.h"
 #include "shaders/shared/weather_window.h"

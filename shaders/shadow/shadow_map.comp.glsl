@@ -6,7 +6,7 @@
 // with the detail level the view uses at that point), so the shadows fall from the clouds the eye sees.
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#extension GL_EXT_control_flow_attributes : require  // [[dont_unroll]] in cloud_density.glsl
+#extension GL_EXT_control_flow_attributes : require  // [[unroll]] in cloud_density.glsl
 
 #include "shaders/shared/frame_params.h"
 #include "shaders/shared/shadow_map_params.h"

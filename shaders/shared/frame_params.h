@@ -96,7 +96,7 @@ struct FrameParams
 #define FRAME_FLAG_NO_DETAIL 1u      // skip detail erosion (tests of the base shape)
 #define FRAME_FLAG_NO_HIGH_CLOUD 2u  // skip the 2D cirrus layer
 #define FRAME_FLAG_NO_LINEAR_OUTPUT 4u  // the composite writes no linear frame (none was asked for: 1x1 stand-in bound)
-#define FRAME_FLAG_REPROJECTED 8u    // the composite takes fresh pixels from the block-resolution image, the rest from the packed history
+#define FRAME_FLAG_REPROJECTED 8u    // the composite takes fresh pixels from the block-resolution image, the rest from the cloud history
 #define FRAME_FLAG_NO_SKIPPING 16u   // the march's search samples every step (no empty-space skipping: tests, A/B)
 // The composite's optional outputs, each written only while a reader asks for it (1x1 stand-ins otherwise):
 #define FRAME_FLAG_SKY_LAYER 32u     // the sky without clouds (linear, pre-exposed)

@@ -15,7 +15,7 @@
 # 1080p shm with an earlier tree prepared with `prepare-before REV`, the frame path before a change, in the same
 # call; "before-both" its shm and Vulkan transports, "before-shadow" with a 1024² shadow map, "sky-bench-before"
 # the renderer alone with the earlier tree; "sky-bench@NAME" the renderer with the SPIR-V in .gpu/spirv-NAME,
-# for shader-only variants built here; "sky-bench+OPTIONS" and "sky-bench-before+OPTIONS" with more sky-bench
+# for shader-only variants built here (sky-bench@NAME+OPTIONS with options); "sky-bench+OPTIONS" and "sky-bench-before+OPTIONS" with more sky-bench
 # options, commas for spaces, e.g. sky-bench+--full-cone-samples,1), SKY_SVC_FRAMES (timed frames per scene, size and
 # transport; default 300), SKY_SVC_SCENES (default all), SKY_SVC_LIMIT_S (each run's time limit, default
 # 150 s), SKY_SVC_BUILD=0 (reuse /tmp/build from an earlier call on the same warm machine). A device call
@@ -141,8 +141,11 @@ for run in ${SKY_SVC_RUNS:-1080p 1080p-layers 1080p-layers-vulkan 1080p-shadow 4
     sky-bench-before+*)  # the same with the earlier tree
       extra=${run#sky-bench-before+}
       skyBench "-before-${extra//[^a-z0-9]/}" /tmp/build-before/skyservice/sky-bench "$G/before/spirv" ${extra//,/ } ;;
-    sky-bench@*)  # the current renderer with the shaders of .gpu/spirv-NAME (a shader-only variant, same call)
-      skyBench "-${run#sky-bench@}" $BENCH "$G/spirv-${run#sky-bench@}" ;;
+    sky-bench@*)  # the current renderer with the shaders of .gpu/spirv-NAME (a shader-only variant, same call);
+                  # sky-bench@NAME+OPTIONS with more options as above
+      spec=${run#sky-bench@}; name=${spec%%+*}; extra=""
+      [[ $spec == *+* ]] && extra=${spec#*+}
+      skyBench "-$name${extra//[^a-z0-9]/}" $BENCH "$G/spirv-$name" ${extra//,/ } ;;
     baseline)  # GPU.md's yardstick at the same size, in the same call
       if timeout 60 cmake -S $G/baseline -B /tmp/bb -DCMAKE_BUILD_TYPE=Release \
            -DCLOUDPROBE_SPV=$G/baseline/cloud.comp.spv -DVulkan_INCLUDE_DIR=$G/include \

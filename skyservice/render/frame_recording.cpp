@@ -96,7 +96,7 @@ void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, c
                                                   : r.march.frontImage;
     recordMarch(r, frame, cmd, marchX, marchY, marchCloud, marchDepth, marchFront);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsClouds);
-    // Reprojected: the packed history the reconstruct pass writes this frame (which the next frame
+    // Reprojected: the cloud history the reconstruct pass writes this frame (which the next frame
     // reprojects) holds the pixels not marched this frame; the composite takes the marched ones from the
     // fresh images, and writes the full-resolution cloud image only when a reader asks for it.
     const uint32_t next = r.reconstruct.reprojection.current ^ 1u;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The reconstruct pass of temporal reprojection (shaders/clouds/reconstruct.comp.glsl; the CPU side's
 // decisions are in reprojection.h): its program, the pixels the march wrote at block resolution, the
-// packed history of the last two frames, and what the renderer remembers of the last reprojected frame.
+// cloud history of the last two frames, and what the renderer remembers of the last reprojected frame.
 #pragma once
 
 #include "skyservice/render/cloud_history_images.h"

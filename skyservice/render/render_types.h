@@ -33,11 +33,12 @@ struct QualitySettings
     /// H200 at 1920x1080 reprojected (130 000 rays): -6..-27 %.
     uint32_t lightVolumeMinRays = 50000;
     /// View samples behind a view transmittance below this take the base shape without detail erosion
-    /// (0: never): there little of the sample reaches the eye. H200, 1080p reprojected: -4..-7 % per frame
-    /// in the volumetric scenes at 0.1 (-7..-10 % at 0.2); pictures 47-56 dB of those without it at 0.1
-    /// (41-50 dB at 0.2), tests/gpu/test_render.cpp. (Measured with the march before its bisection fix,
-    /// BENCHMARKS.md.)
-    double detailMinTransmittance = 0.1;
+    /// (0: never): there little of the sample reaches the eye. 0.2 since issue 22's shapes made each
+    /// eroded sample dearer: H200, 1080p reprojected, against 0.1: inside the deck -8 % per frame, the
+    /// deck -3 %, cumulus -1 %, FL350 -2 % (BENCHMARKS.md, eighteenth session); the 320x180 contact sheet
+    /// of the bench scenes 45-55 dB (display) of 0.1's, and the deck from above 41 dB (cloud radiance) of
+    /// the render that erodes every sample (47 dB at 0.1; tests/gpu/test_render.cpp).
+    double detailMinTransmittance = 0.2;
     /// Those deep view samples also step this many times further (1: the same step). H200, 1080p
     /// reprojected: -11..-17 % per frame at 2; the 320x180 contact sheet of the bench scenes 67 dB of 1.
     double deepStepFactor = 2.0;
@@ -167,8 +168,8 @@ struct RenderResult
     uint32_t height = 0;
     std::vector<uint16_t> cloudRgbaHalf;  ///< premultiplied cloud radiance + alpha (1 - transmittance), half floats
     /// Transmittance-weighted cloud distance (m), 0 where alpha is 0. Reprojected frames: the pixels not
-    /// marched this frame come from the packed history (shaders/lib/cloud_history.glsl): radiance to
-    /// 2^-10 of the brightest channel, alpha to 1/4094, depth to 1.2e-4 relative.
+    /// marched this frame come from the history (shaders/lib/cloud_history.glsl): radiance to 2^-9 of
+    /// the brightest channel, alpha to 1/131070, depth to 1.2e-4 relative.
     std::vector<float> cloudDepthM;
     std::vector<uint16_t> linearRgbaHalf; ///< final linear radiance (sky + clouds), half floats; empty without QualitySettings::linearOutput
     std::vector<uint8_t> displayRgba8;    ///< tone-mapped sRGB
@@ -181,7 +182,7 @@ struct RenderResult
     /// accumulated from the eye first reaches 2 % (shaders/clouds/cloud_path.glsl kCloudFrontOpacity; the
     /// weighted distance where it never does; never beyond it), then the transmittance-weighted distance
     /// (cloudDepthM); both 0 where alpha is 0. Reprojected frames carry the front of the pixels not marched
-    /// through a history of its own (float), the depth through the packed one.
+    /// through a history of its own (float), the depth through the cloud history's.
     std::vector<float> depthLayerM;
     std::map<std::string, double> gpuMs;  ///< GPU time per pass (ms)
     double cpuSetupMs = 0;                ///< CPU time to prepare the frame (weather window etc.)

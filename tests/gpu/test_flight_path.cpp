@@ -98,9 +98,10 @@ TEST_F(FlightPath, TurnAt90DegreesPerSecondKeepsHistory)
 // Pushing the nose down at 60 deg/s over the deck (a degree per frame, ~1.2 rows at 128x72): the rows
 // that come in at the bottom are marched in full (reprojection.h NewLines), so the bottom band keeps the
 // detail of the full render instead of the fill interpolated from one pixel in 16. Measured over the 12
-// frames: band cloud PSNR >= 31.9 dB, mean abs <= 0.0062 of the peak; with the rows left to the fill
-// 28.1 dB and 0.0125. (The band's sharpness, 0.64-1.07 of the full render's, is too noisy at 8 rows of 128
-// pixels to gate.)
+// frames: band cloud PSNR >= 31.1 dB, mean abs <= 0.0088 of the peak (31.9 dB and 0.0071 with deep samples
+// from a view transmittance of 0.1 instead of 0.2: render_types.h detailMinTransmittance; the deck's
+// deep parts are sampled more coarsely); with the rows left to the fill 28.1 dB and 0.0125. (The band's
+// sharpness, 0.64-1.07 of the full render's, is too noisy at 8 rows of 128 pixels to gate.)
 TEST_F(FlightPath, PitchDownAt60DegreesPerSecond)
 {
     ViewRequest v = aboveDeck();
@@ -108,7 +109,7 @@ TEST_F(FlightPath, PitchDownAt60DegreesPerSecond)
         flySegment(*renderer, v, {250.0, 0.0, 0.0, -60.0}, 16, 12, "pitch -60", "/tmp/sky-reprojection-pitch60.png");
     expectGates(s, true);
     EXPECT_GE(s.worstEdgeCloudDb, 31.0);
-    EXPECT_LE(s.worstEdgeMeanAbs, 0.0075);
+    EXPECT_LE(s.worstEdgeMeanAbs, 0.0100);
 }
 
 

@@ -168,9 +168,10 @@ TEST_F(GpuRender, SunSideOfACumulusIsBrighterThanItsShadowSide)
         << "lit " << a.meanOpaqueLuminance << " shadow " << b.meanOpaqueLuminance;
 }
 
-// Deep in a cloud (view transmittance below QualitySettings::detailMinTransmittance, 0.1) the view
-// samples skip the detail erosion: a deck seen from above stays within 45 dB of the render that erodes
-// every sample (measured 47.0 dB; 41.2 at 0.2, 37.8 at 0.3), and differs from it (the rule is in use).
+// Deep in a cloud (view transmittance below QualitySettings::detailMinTransmittance, 0.2) the view
+// samples skip the detail erosion: a deck seen from above stays within 38 dB of the render that erodes
+// every sample (measured 39.2 dB; 47.5 at 0.1, the default before issue 22's shapes made eroded samples
+// dearer: render_types.h), and differs from it (the rule is in use).
 TEST_F(GpuRender, DeepSamplesWithoutDetailChangeLittle)
 {
     WeatherSnapshot w = deckBelowWeather();
@@ -183,7 +184,7 @@ TEST_F(GpuRender, DeepSamplesWithoutDetailChangeLittle)
     EXPECT_NE(shipped.cloudRgbaHalf, eroded.cloudRgbaHalf);
     double psnr = psnrCloud(shipped, eroded);
     std::printf("deep samples without detail: %.2f dB\n", psnr);
-    EXPECT_GE(psnr, 45.0);
+    EXPECT_GE(psnr, 38.0);
 }
 
 // The march's steps inside a cloud (QualitySettings::maxStepOpticalDepth 1: at most one optical depth)
