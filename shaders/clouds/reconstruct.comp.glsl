@@ -21,7 +21,7 @@
 // pixel is never colour-clamped), and once for all the pixels of an invocation's quad
 // (RECONSTRUCT_QUAD_PX^2 pixels, inside one block for every block size: B = 4 or 2, and B = 1 marches
 // every pixel); the nearest fresh pixel is computed, not searched with a depth load per candidate; the
-// history texel found by the depth fixed point is read once and serves as the still pixel's value.
+// alpha and depth texel found by the depth fixed point is read once and serves the still pixel too.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -41,6 +41,8 @@ layout(binding = 4) uniform sampler2D historyAlphaDepthIn;
 // frame reprojects it.
 layout(binding = 5, r32ui) uniform writeonly uimage2D historyColourOut;
 layout(binding = 6, r32ui) uniform writeonly uimage2D historyAlphaDepthOut;
+// The depth layer's front distance (FRAME_FLAG_DEPTH_LAYER; 1x1 stand-ins otherwise): the march's fresh
+// fronts (block resolution) and a history of its own beside the cloud history, carried the way the depth is.
 layout(binding = 7, r32f) uniform readonly image2D freshFront;
 layout(binding = 8, r32f) uniform readonly image2D frontHistoryIn;
 layout(binding = 9, r32f) uniform writeonly image2D frontHistoryOut;
