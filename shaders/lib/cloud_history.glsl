@@ -4,8 +4,8 @@
 // Two 32-bit images a frame, 8 bytes a texel (the RGBA16F radiance and R32F depth they replaced took 12).
 // Shaders write them as plain bits through R32_UINT storage views (a core storage format) and read them
 // through sampled views in formats the texture unit decodes, and filters: the reconstruct pass's
-// Catmull-Rom read is five bilinear fetches of each, not twelve texels unpacked by hand (ImageDesc::
-// sampledFormat, skyservice/render/reconstruct_pass.h):
+// Catmull-Rom read is five bilinear fetches of each, not twelve texels unpacked by hand (the images:
+// skyservice/render/cloud_history_images.h):
 //   colour       E5B9G9R9_UFLOAT: R, G, B 9-bit mantissas (bits 0-8, 9-17, 18-26) of a shared exponent
 //                (bits 27-31, bias 15): premultiplied radiance
 //   alpha/depth  R16G16_UNORM: R (bits 0-15) alpha, G (bits 16-31) the depth's log code
