@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/atmosphere_passes.h"
 
-#include "skyservice/render/renderer.h"
+#include "skyservice/vk/programs.h"
 
 #include "shaders/shared/atmosphere_params.h"
 #include "skyservice/sky/atmosphere.h"
@@ -169,13 +169,14 @@ LightingEstimate estimateLighting(AtmospherePass& a, const CameraFrame& camera, 
     return e;
 }
 
-void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camera, const SunMoon& sunMoon,
+void recordAtmosphere(const PassFrame& f, AtmospherePass& a, const CameraFrame& camera, const SunMoon& sunMoon,
                       const FrameInputs& in)
 {
-    AtmospherePass& a = r.atmosphere;
+    VkCommandBuffer cmd = f.cmd;
+    const VkSampler clamp = f.samplers.linearClamp;
     const double R = atmosphereGroundRadiusM(camera);
     AtmosphereParams p = frameAtmosphere(R, sunMoon, *in.request);
-    std::memcpy(recording(r).atmosphereUniforms.mapped, &p, sizeof p);
+    std::memcpy(f.atmosphereUniforms.mapped, &p, sizeof p);
     // The transmittance and multiple-scattering LUTs depend on the radius, the haze and the fog. The last
     // haze and fog they were made with are the sky-view LUT's (made in the same call as they are, after them).
     const bool hazeChanged =
@@ -184,12 +185,12 @@ void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camer
     const bool rebuild = a.radiusM != R || hazeChanged;
     if (rebuild)
     {
-        dispatch(r.ctx, cmd, a.transmittanceProgram, TRANSMITTANCE_LUT_WIDTH, TRANSMITTANCE_LUT_HEIGHT, 1, nullptr, 0,
-                 {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(a.transmittanceLut)});
+        dispatch(f.ctx, cmd, a.transmittanceProgram, TRANSMITTANCE_LUT_WIDTH, TRANSMITTANCE_LUT_HEIGHT, 1, nullptr, 0,
+                 {DescriptorInfo(f.atmosphereUniforms), DescriptorInfo(a.transmittanceLut)});
         computeBarrier(cmd);
-        dispatch(r.ctx, cmd, a.multiscatterProgram, MULTISCATTER_LUT_SIZE, MULTISCATTER_LUT_SIZE, 1, nullptr, 0,
-                 {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(a.multiscatterLut),
-                  DescriptorInfo(a.transmittanceLut, r.linearClamp)});
+        dispatch(f.ctx, cmd, a.multiscatterProgram, MULTISCATTER_LUT_SIZE, MULTISCATTER_LUT_SIZE, 1, nullptr, 0,
+                 {DescriptorInfo(f.atmosphereUniforms), DescriptorInfo(a.multiscatterLut),
+                  DescriptorInfo(a.transmittanceLut, clamp)});
         computeBarrier(cmd);
         a.radiusM = R;
     }
@@ -210,12 +211,12 @@ void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camer
     a.skyViewPush = c;
     a.skyViewAtmosphere = p;
     a.skyViewInputsValid = true;
-    dispatch(r.ctx, cmd, a.skyViewProgram, SKY_VIEW_LUT_WIDTH, SKY_VIEW_LUT_HEIGHT, 1, c,
-             {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(a.skyViewLut),
-              DescriptorInfo(a.transmittanceLut, r.linearClamp), DescriptorInfo(a.multiscatterLut, r.linearClamp)});
-    dispatch(r.ctx, cmd, a.aerialPerspectiveProgram, AERIAL_LUT_WIDTH, AERIAL_LUT_HEIGHT, 1, c,
-             {DescriptorInfo(recording(r).atmosphereUniforms), DescriptorInfo(a.aerialInscatterLut),
-              DescriptorInfo(a.transmittanceLut, r.linearClamp), DescriptorInfo(a.multiscatterLut, r.linearClamp),
+    dispatch(f.ctx, cmd, a.skyViewProgram, SKY_VIEW_LUT_WIDTH, SKY_VIEW_LUT_HEIGHT, 1, c,
+             {DescriptorInfo(f.atmosphereUniforms), DescriptorInfo(a.skyViewLut),
+              DescriptorInfo(a.transmittanceLut, clamp), DescriptorInfo(a.multiscatterLut, clamp)});
+    dispatch(f.ctx, cmd, a.aerialPerspectiveProgram, AERIAL_LUT_WIDTH, AERIAL_LUT_HEIGHT, 1, c,
+             {DescriptorInfo(f.atmosphereUniforms), DescriptorInfo(a.aerialInscatterLut),
+              DescriptorInfo(a.transmittanceLut, clamp), DescriptorInfo(a.multiscatterLut, clamp),
               DescriptorInfo(a.aerialTransmittanceLut)});
 }
 

@@ -5,13 +5,12 @@
 
 #include "shaders/shared/atmosphere_params.h"
 #include "skyservice/render/frame_setup.h"
+#include "skyservice/render/pass_frame.h"
 #include "skyservice/sky/atmosphere_reference.h"
 #include "skyservice/vk/programs.h"
 
 namespace sky
 {
-
-struct Renderer;
 
 /// The atmosphere's LUTs, the programs that build them, and what they were last built for: the
 /// transmittance and multiple-scattering LUTs depend on the ground radius alone, the sky-view and
@@ -51,9 +50,10 @@ void forgetAtmosphereLuts(AtmospherePass& pass);
 LightingEstimate estimateLighting(AtmospherePass& pass, const CameraFrame& camera, const SunMoon& sunMoon,
                                   const WindowSummary& summary);
 
-/// Records the transmittance and multiple-scattering LUTs (when the earth radius changed) and the
-/// sky-view LUT for this frame.
-void recordAtmosphere(Renderer& r, VkCommandBuffer cmd, const CameraFrame& camera, const SunMoon& sunMoon,
+/// Writes the frame's atmosphere uniforms (f.atmosphereUniforms) and records the transmittance and
+/// multiple-scattering LUTs (when the earth radius, haze or fog changed) and the sky-view and
+/// aerial-perspective LUTs for this frame (when their inputs changed).
+void recordAtmosphere(const PassFrame& f, AtmospherePass& pass, const CameraFrame& camera, const SunMoon& sunMoon,
                       const FrameInputs& in);
 
 }  // namespace sky

@@ -1,56 +1,61 @@
 // SPDX-License-Identifier: MIT
 // The composite pass (shaders/composite/composite.comp.glsl): sky, clouds and aerial perspective into
 // the display image, and the optional outputs a reader asks for (linear frame, sky and cloud layers, the
-// full-resolution cloud image of a reprojected frame). Its program, its output images and the 1x1
-// stand-ins bound where a frame has nothing to read or write.
+// depth layer, the full-resolution cloud image of a reprojected frame). Its program and every image it
+// owns: the display image and the optional outputs, each made only while frames ask for it.
 #pragma once
 
 #include "skyservice/render/cloud_history_images.h"
-#include "skyservice/render/render_types.h"
+#include "skyservice/render/frame_outputs.h"
+#include "skyservice/render/pass_frame.h"
+#include "skyservice/render/pass_images.h"
+#include "skyservice/render/stand_in_images.h"
 #include "skyservice/vk/programs.h"
 
 namespace sky
 {
 
-struct Renderer;
+struct AtmospherePass;
 
 struct CompositePass
 {
     Program program;
-    Image displayImage;  ///< tone-mapped sRGB, every frame (frame_images.h makes the frame-size images)
-    Image linearImage;   ///< only while frames ask for it (QualitySettings::linearOutput)
-    /// Compositing layers, only while frames ask for them (kReadSky, kReadCloudLayer).
+    Image displayImage;  ///< tone-mapped sRGB, every frame
+    Image linearImage;   ///< only while frames ask for it (FrameOutputs::linearImage)
+    /// Compositing layers, only while frames ask for them (FrameOutputs::sky, cloudLayer).
     Image skyImage, cloudLayerImage;
-    /// The depth layer (kReadDepthLayer, kDrawDepthLayer): RG32F, R the cloud's front, G its weighted distance.
+    /// The depth layer (FrameOutputs::depthLayer): RG32F, R the cloud's front, G its weighted distance.
     Image depthLayerImage;
-    // 1x1 images bound where a pass has nothing to read or write (every binding needs an image): the
-    // optional outputs when none is asked for, the history in full-resolution frames.
-    Image linearStandIn, depthStandIn, depthLayerStandIn;
-    CloudHistoryImages historyStandIn;
 };
 
-/// Loads the program and makes the stand-ins (layout GENERAL); the frame-size images come with the first frame.
-SkyStatus createCompositePass(const Context& ctx, MemoryTracker& memory, CompositePass& pass);
+/// What the composite reads, and the images of other passes it writes into.
+struct CompositeInputs
+{
+    const AtmospherePass& atmosphere;  ///< its transmittance, sky-view and aerial-perspective LUTs
+    const Image& cloud;    ///< the march's cloud image (block resolution in reprojected frames)
+    const Image& depth;    ///< ... and its depth
+    const CloudHistoryImages& history;  ///< of the pixels not marched (stand-in: full frames)
+    const Image& front;         ///< the march's fronts (as `depth`; stand-in without a depth layer)...
+    const Image& frontHistory;  ///< ... and the front history of the pixels not marched
+    /// FRAME_FLAG_WRITE_CLOUD: the full-resolution cloud image and depth of a reprojected frame (the
+    /// march's), else stand-ins.
+    const Image& cloudOut;
+    const Image& depthOut;
+    const StandInImages& standIns;  ///< bound for the outputs no reader asks for
+    FrameOutputs outputs;           ///< which of the composite's own outputs the frame writes
+};
+
+/// Loads the program; the frame-size images come with the first frame.
+SkyStatus createCompositePass(const Context& ctx, CompositePass& pass);
 void destroyCompositePass(const Context& ctx, MemoryTracker& memory, CompositePass& pass);
 
-/// The images the composite reads and writes. Each optional output is the frame's image while a reader
-/// asks for it (its FRAME_FLAG_* set), else a 1x1 stand-in the shader does not write.
-struct CompositeImages
-{
-    const Image* cloud = nullptr;    ///< the march's cloud image (block resolution in reprojected frames)
-    const Image* depth = nullptr;    ///< ... and its depth
-    const CloudHistoryImages* history = nullptr;  ///< of the pixels not marched (stand-in: full frames)
-    const Image* linear = nullptr;   ///< linear frame (FRAME_FLAG_NO_LINEAR_OUTPUT clear)
-    const Image* sky = nullptr;      ///< FRAME_FLAG_SKY_LAYER
-    const Image* cloudLayer = nullptr;  ///< FRAME_FLAG_CLOUD_LAYER
-    const Image* cloudOut = nullptr;    ///< FRAME_FLAG_WRITE_CLOUD: the full-resolution cloud image...
-    const Image* depthOut = nullptr;    ///< ... and depth of a reprojected frame
-    const Image* front = nullptr;         ///< FRAME_FLAG_DEPTH_LAYER: the march's fronts (as `depth`)...
-    const Image* frontHistory = nullptr;  ///< ... the front history of the pixels not marched...
-    const Image* depthLayer = nullptr;    ///< ... and the layer written
-};
+/// Makes the display image for a width x height frame and the optional outputs `outputs` asks for; lets
+/// go those it no longer asks for (pass_images.h: no queue idles).
+SkyStatus ensureCompositeImages(CompositePass& pass, ImageChanges& changes, uint32_t width, uint32_t height,
+                                const FrameOutputs& outputs);
 
 /// Records the composite pass (sky + clouds + aerial perspective -> display image and the outputs asked for).
-void recordComposite(Renderer& r, VkCommandBuffer cmd, const ViewRequest& request, const CompositeImages& images);
+void recordComposite(const PassFrame& f, const CompositePass& pass, const CompositeInputs& in, uint32_t width,
+                     uint32_t height);
 
 }  // namespace sky

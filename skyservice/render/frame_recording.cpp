@@ -21,29 +21,29 @@ void copyRegion(const FrameContext& frame, const ReadbackRegion& region, std::ve
 
 }  // namespace
 
-FrameOutputs FrameOutputs::of(const ViewRequest& request, const QualitySettings& quality)
+SkyStatus prepareFrameImages(Renderer& r, const ViewRequest& request, const QualitySettings& quality,
+                             const FrameOutputs& outputs)
 {
-    FrameOutputs o;
-    o.linearImage = quality.linearOutput;
-    const uint32_t bits = request.readback;
-    // Layers kept on the GPU for the export are drawn even when nothing is read back (sky-bench).
-    o.sky = (bits & kDrawSky) != 0;
-    o.cloudLayer = (bits & kDrawCloudLayer) != 0;
-    o.depthLayer = (bits & kDrawDepthLayer) != 0;
-    if (!quality.readback)
-        return o;
-    o.display = (bits & kReadDisplay) != 0;
-    o.cloud = (bits & kReadCloud) != 0;
-    o.depth = (bits & kReadDepth) != 0;
-    o.readSky = (bits & kReadSky) != 0;
-    o.readCloudLayer = (bits & kReadCloudLayer) != 0;
-    o.readDepthLayer = (bits & kReadDepthLayer) != 0;
-    o.sky = o.sky || o.readSky;
-    o.cloudLayer = o.cloudLayer || o.readCloudLayer;
-    o.depthLayer = o.depthLayer || o.readDepthLayer;
-    o.shadowDetail = (bits & kReadShadowDetail) != 0;
-    o.linear = quality.linearOutput;
-    return o;
+    // The newest frame submitted is the last that can use an image let go now; its context's fence is
+    // waited for before the context is used again, which is after every older frame too. Collected:
+    // frames are collected in order, so none is in flight.
+    FrameContext& newest = recording(r);
+    ImageChanges changes{r.ctx, r.memory, newest.submitted ? &newest.deletions : nullptr, r.newImages};
+    const bool reprojected = quality.reprojected;
+    SKY_TRY(ensureCompositeImages(r.composite, changes, request.width, request.height, outputs));
+    MarchImageNeeds march;
+    march.width = request.width;
+    march.height = request.height;
+    march.fullResolutionCloud = !reprojected || outputs.cloud || outputs.depth;
+    march.fullResolutionFront = outputs.depthLayer && !reprojected;
+    march.blockPx = reprojected ? r.reconstruct.reprojection.block.blockPx : 0u;
+    march.freshFront = outputs.depthLayer;
+    SKY_TRY(ensureMarchImages(r.march, changes, march));
+    if (reprojected)
+        SKY_TRY(ensureReconstructImages(r.reconstruct, changes, request.width, request.height, outputs.depthLayer));
+    if (request.shadowMap)
+        SKY_TRY(ensureShadowMapImages(r.shadowPass, changes, request.shadowMapSize));
+    return SkyStatus::success();
 }
 
 VkDeviceSize frameReadbackBytes(const Renderer& r, const ViewRequest& request, const QualitySettings& quality)
@@ -63,13 +63,45 @@ VkDeviceSize frameReadbackBytes(const Renderer& r, const ViewRequest& request, c
     return bytes;
 }
 
+PassFrame passFrame(const Renderer& r, const FrameContext& frame)
+{
+    return PassFrame{r.ctx, frame.cmd, frame.frameUniforms, frame.atmosphereUniforms, r.samplers};
+}
+
+CompositeInputs compositeInputs(const Renderer& r, const FrameOutputs& outputs, bool reprojected)
+{
+    const StandInImages& standIn = r.standIns;
+    const MarchPass& march = r.march;
+    const ReconstructPass& reconstruct = r.reconstruct;
+    // Reprojected: the cloud history the reconstruct pass writes this frame (which the next frame
+    // reprojects) holds the pixels not marched this frame; the composite takes the marched ones from the
+    // fresh images, and writes the full-resolution cloud image only when a reader asks for it.
+    const uint32_t next = reconstruct.reprojection.current ^ 1u;
+    const bool writeCloud = reprojected && (outputs.cloud || outputs.depth);
+    const Image& front = !outputs.depthLayer ? standIn.depth : reprojected ? march.freshFrontImage : march.frontImage;
+    return CompositeInputs{
+        .atmosphere = r.atmosphere,
+        .cloud = reprojected ? march.freshCloudImage : march.cloudImage,
+        .depth = reprojected ? march.freshDepthImage : march.depthImage,
+        .history = reprojected ? reconstruct.history[next] : standIn.history,
+        .front = front,
+        .frontHistory = outputs.depthLayer && reprojected ? reconstruct.frontHistory[next] : standIn.depth,
+        .cloudOut = writeCloud ? march.cloudImage : standIn.linear,
+        .depthOut = writeCloud ? march.depthImage : standIn.depth,
+        .standIns = standIn,
+        .outputs = outputs,
+    };
+}
+
 void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, const CameraFrame& camera,
                  const SunMoon& sunMoon, const FrameInputs& in, const FrameParams& params, FrameReadbackPlan& plan,
                  RenderResult& facts)
 {
     const bool reprojected = in.quality->reprojected;
     const FrameOutputs outputs = FrameOutputs::of(request, *in.quality);
+    const PassFrame f = passFrame(r, frame);
     VkCommandBuffer cmd = frame.cmd;
+    recordNewImages(cmd, r.newImages);
     vkCmdResetQueryPool(cmd, frame.timestamps, 0, kTsCount);
     // Reprojected: one invocation per block (4x4, or finer near clouds) into the fresh images.
     const uint32_t block = reprojected ? r.reconstruct.reprojection.block.blockPx : 1u;
@@ -84,39 +116,33 @@ void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, c
     facts.marchRowOrder = prepareMarchOrder(r.march.order, cmd, marchGroupRows, r.march.dispatchRanges,
                                             r.tuning.costOrderedMarch);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, frame.timestamps, kTsStart);
-    recordAtmosphere(r, cmd, camera, sunMoon, in);
+
+    recordAtmosphere(f, r.atmosphere, camera, sunMoon, in);
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsSkyView);
-    recordLightVolume(r, cmd, params);
+
+    const RendererWeather& weather = r.weather;
+    const WindowKey noWindow;
+    recordLightVolume(f, r.lightVolume,
+                      LightVolumeInputs{weather.windowImage, weather.window ? weather.window->key : noWindow, r.noise},
+                      params);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsLightVolume);
-    const Image& marchCloud = reprojected ? r.reconstruct.freshCloudImage : r.march.cloudImage;
-    const Image& marchDepth = reprojected ? r.reconstruct.freshDepthImage : r.march.depthImage;
-    const Image& marchFront = !outputs.depthLayer ? r.composite.depthStandIn
-                              : reprojected       ? r.reconstruct.freshFrontImage
-                                                  : r.march.frontImage;
-    recordMarch(r, frame, cmd, marchX, marchY, marchCloud, marchDepth, marchFront);
+
+    const CompositeInputs composite = compositeInputs(r, outputs, reprojected);
+    const MarchInputs marchIn{weather.windowImage,  weather.columnBoundsImage, r.noise,
+                              r.atmosphere.transmittanceLut, r.lightVolume.image, r.lightVolume.farImage};
+    recordMarch(f, r.march, marchIn, MarchTargets{composite.cloud, composite.depth, composite.front}, marchX, marchY);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsClouds);
-    // Reprojected: the cloud history the reconstruct pass writes this frame (which the next frame
-    // reprojects) holds the pixels not marched this frame; the composite takes the marched ones from the
-    // fresh images, and writes the full-resolution cloud image only when a reader asks for it.
-    const uint32_t next = r.reconstruct.reprojection.current ^ 1u;
+
     if (reprojected)
-        recordReconstruct(r, frame, cmd, request.width, request.height);
+    {
+        const ReconstructInputs fresh{r.march.freshCloudImage, r.march.freshDepthImage,
+                                      outputs.depthLayer ? &r.march.freshFrontImage : nullptr, r.standIns.depth};
+        recordReconstruct(f, r.reconstruct, fresh, request.width, request.height);
+    }
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsReconstruct);
-    const bool writeCloud = reprojected && (outputs.cloud || outputs.depth);
-    CompositeImages images;
-    images.cloud = &marchCloud;
-    images.depth = &marchDepth;
-    images.history = reprojected ? &r.reconstruct.history[next] : &r.composite.historyStandIn;
-    images.linear = outputs.linearImage ? &r.composite.linearImage : &r.composite.linearStandIn;
-    images.sky = outputs.sky ? &r.composite.skyImage : &r.composite.linearStandIn;
-    images.cloudLayer = outputs.cloudLayer ? &r.composite.cloudLayerImage : &r.composite.linearStandIn;
-    images.cloudOut = writeCloud ? &r.march.cloudImage : &r.composite.linearStandIn;
-    images.depthOut = writeCloud ? &r.march.depthImage : &r.composite.depthStandIn;
-    images.front = &marchFront;
-    images.frontHistory = outputs.depthLayer && reprojected ? &r.reconstruct.frontHistory[next] : &r.composite.depthStandIn;
-    images.depthLayer = outputs.depthLayer ? &r.composite.depthLayerImage : &r.composite.depthLayerStandIn;
-    recordComposite(r, cmd, request, images);
+
+    recordComposite(f, r.composite, composite, request.width, request.height);
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsComposite);
     recordMarchLookupsReadback(r.march.order, cmd);
@@ -136,6 +162,16 @@ void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, c
         plan.cloudLayer = addImageReadback(frame, r.composite.cloudLayerImage);
     if (outputs.readDepthLayer)
         plan.depthLayer = addImageReadback(frame, r.composite.depthLayerImage);
+}
+
+void recordFrameShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request, const QualitySettings& quality,
+                          const CameraFrame& camera, const SunMoon& sunMoon, ShadowMapReadback& readback,
+                          RenderResult& facts)
+{
+    const RendererWeather& weather = r.weather;
+    const ShadowMapInputs in{weather.windowImage, r.noise,          weather.window.get(),
+                             weather.version,     weather.snapshot->validTimeUnixS, r.tuning};
+    recordShadowMap(passFrame(r, frame), frame, r.shadowPass, in, request, quality, camera, sunMoon, readback, facts);
 }
 
 void collectFrame(Renderer& r, const FrameContext& frame, const ViewRequest& request, bool reprojected,

@@ -2,7 +2,7 @@
 #include "skyservice/render/light_volume.h"
 
 #include "shaders/shared/light_volume.h"
-#include "skyservice/render/renderer.h"
+#include "skyservice/vk/programs.h"
 
 #include <algorithm>
 #include <cmath>
@@ -93,27 +93,28 @@ FrameParams lightVolumeInputs(const FrameParams& frame)
 
 }  // namespace
 
-void recordLightVolume(Renderer& r, VkCommandBuffer cmd, const FrameParams& frame)
+void recordLightVolume(const PassFrame& f, LightVolumePass& pass, const LightVolumeInputs& in,
+                       const FrameParams& frame)
 {
     if (frame.lightVolume.z <= 0.0f)
         return;
     LightVolumeKey key;
     key.inputs = lightVolumeInputs(frame);
-    key.window = r.weather.window ? r.weather.window->key : WindowKey{};
+    key.window = in.windowKey;
     key.valid = true;
     // FrameParams is all vec4/uvec4 (std140 without padding): bytewise equality is field equality.
-    LightVolumePass& pass = r.lightVolume;
     if (pass.key.valid && pass.key.window == key.window &&
         std::memcmp(&pass.key.inputs, &key.inputs, sizeof(FrameParams)) == 0)
         return;
     pass.key = key;
     for (uint32_t cascade = 0; cascade < (frame.lightVolumeFar.z > 0.0f ? 2u : 1u); ++cascade)
-        dispatch(r.ctx, cmd, pass.program, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS, cascade,
-                 {DescriptorInfo(recording(r).frameUniforms), DescriptorInfo(r.weather.windowImage, r.linearClamp),
-                  DescriptorInfo(r.noise.base, r.linearRepeat), DescriptorInfo(r.noise.detail, r.linearRepeat),
-                  DescriptorInfo(r.noise.curl, r.linearRepeat),
+        dispatch(f.ctx, f.cmd, pass.program, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS, cascade,
+                 {DescriptorInfo(f.frameUniforms), DescriptorInfo(in.weatherWindow, f.samplers.linearClamp),
+                  DescriptorInfo(in.noise.base, f.samplers.linearRepeat),
+                  DescriptorInfo(in.noise.detail, f.samplers.linearRepeat),
+                  DescriptorInfo(in.noise.curl, f.samplers.linearRepeat),
                   DescriptorInfo(cascade == 0 ? pass.image : pass.farImage)});
-    computeBarrier(cmd);
+    computeBarrier(f.cmd);
 }
 
 }  // namespace sky

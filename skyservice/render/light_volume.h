@@ -4,6 +4,8 @@
 #pragma once
 
 #include "shaders/shared/frame_params.h"
+#include "skyservice/render/noise_textures.h"
+#include "skyservice/render/pass_frame.h"
 #include "skyservice/render/render_tuning.h"
 #include "skyservice/render/render_types.h"
 #include "skyservice/render/window_provider.h"
@@ -11,8 +13,6 @@
 
 namespace sky
 {
-
-struct Renderer;
 
 /// What the volume was built from: the frame uniforms less the fields that only aim the camera or
 /// time-stamp the frame, and the weather window's key. A frame with the same inputs
@@ -50,8 +50,17 @@ void destroyLightVolumePass(const Context& ctx, MemoryTracker& memory, LightVolu
  **********************************************************************/
 void placeLightVolume(const QualitySettings& quality, const RenderTuning& tuning, FrameParams& frame);
 
+/// What the light volume reads: the frame's weather window (and its key) and the noise.
+struct LightVolumeInputs
+{
+    const Image& weatherWindow;
+    const WindowKey& windowKey;
+    const NoiseTextures& noise;
+};
+
 /// Records the pass that fills the volume for `frame`, then a barrier; nothing when frame.lightVolume.z
 /// is 0 or when the volume already holds these inputs (LightVolumePass::key).
-void recordLightVolume(Renderer& r, VkCommandBuffer cmd, const FrameParams& frame);
+void recordLightVolume(const PassFrame& f, LightVolumePass& pass, const LightVolumeInputs& in,
+                       const FrameParams& frame);
 
 }  // namespace sky

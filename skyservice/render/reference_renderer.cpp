@@ -248,13 +248,13 @@ SkyStatus renderReference(Renderer& r, ReferenceRenderer& ref, const ViewRequest
         SKY_TRY(beginOneShot(r.ctx, shot));
         dispatch(r.ctx, shot.cmd, ref.pathProgram, request.width, request.height, 1, push,
                  {DescriptorInfo(frame.frameUniforms), DescriptorInfo(frame.atmosphereUniforms),
-                  DescriptorInfo(r.weather.windowImage, r.linearClamp), DescriptorInfo(r.noise.base, r.linearRepeat),
-                  DescriptorInfo(r.noise.detail, r.linearRepeat), DescriptorInfo(r.noise.curl, r.linearRepeat),
-                  DescriptorInfo(r.atmosphere.transmittanceLut, r.linearClamp), DescriptorInfo(r.atmosphere.skyViewLut, r.linearRepeat),
-                  DescriptorInfo(r.weather.columnBoundsImage, r.nearestRepeat), DescriptorInfo(ref.radianceSum),
+                  DescriptorInfo(r.weather.windowImage, r.samplers.linearClamp), DescriptorInfo(r.noise.base, r.samplers.linearRepeat),
+                  DescriptorInfo(r.noise.detail, r.samplers.linearRepeat), DescriptorInfo(r.noise.curl, r.samplers.linearRepeat),
+                  DescriptorInfo(r.atmosphere.transmittanceLut, r.samplers.linearClamp), DescriptorInfo(r.atmosphere.skyViewLut, r.samplers.linearRepeat),
+                  DescriptorInfo(r.weather.columnBoundsImage, r.samplers.nearestRepeat), DescriptorInfo(ref.radianceSum),
                   DescriptorInfo(ref.depthSum), DescriptorInfo(r.march.cloudImage), DescriptorInfo(r.march.depthImage),
                   DescriptorInfo(ref.stats), DescriptorInfo(ref.paths),
-                  DescriptorInfo(ref.layerBounds, r.nearestRepeat)});
+                  DescriptorInfo(ref.layerBounds, r.samplers.nearestRepeat)});
         SKY_TRY(endOneShot(r.ctx, shot));
         ref.last.dispatches = k + 1;
         if (counters->pixelsUnfinished == 0)
@@ -268,23 +268,15 @@ SkyStatus renderReference(Renderer& r, ReferenceRenderer& ref, const ViewRequest
     ref.last.steps = wide(counters->stepsLow, counters->stepsHigh);
     ref.last.stretchesSkipped = wide(counters->skippedLow, counters->skippedHigh);
 
-    // The real-time composite over the path-traced clouds, into the images the frame asked for.
-    const FrameOutputs outputs = FrameOutputs::of(request, q);
-    CompositeImages images;
-    images.cloud = &r.march.cloudImage;
-    images.depth = &r.march.depthImage;
-    images.history = &r.composite.historyStandIn;
-    images.linear = outputs.linearImage ? &r.composite.linearImage : &r.composite.linearStandIn;
-    images.sky = outputs.sky ? &r.composite.skyImage : &r.composite.linearStandIn;
-    images.cloudLayer = outputs.cloudLayer ? &r.composite.cloudLayerImage : &r.composite.linearStandIn;
-    images.cloudOut = &r.composite.linearStandIn;
-    images.depthOut = &r.composite.depthStandIn;
-    // No depth layer: the path tracer finds no front (FRAME_FLAG_DEPTH_LAYER stays clear).
-    images.front = images.frontHistory = &r.composite.depthStandIn;
-    images.depthLayer = &r.composite.depthLayerStandIn;
+    // The real-time composite over the path-traced clouds, into the images the frame asked for, wired as
+    // a full-resolution frame's. No depth layer: the path tracer finds no front.
+    FrameOutputs outputs = FrameOutputs::of(request, q);
+    FrameOutputs composited = outputs;
+    composited.depthLayer = false;
     OneShot shot;
     SKY_TRY(beginOneShot(r.ctx, shot));
-    recordComposite(r, shot.cmd, request, images);
+    const PassFrame f{r.ctx, shot.cmd, frame.frameUniforms, frame.atmosphereUniforms, r.samplers};
+    recordComposite(f, r.composite, compositeInputs(r, composited, false), request.width, request.height);
     SKY_TRY(endOneShot(r.ctx, shot));
 
     if (outputs.display)

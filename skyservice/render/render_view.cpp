@@ -5,7 +5,6 @@
 #include "skyservice/render/renderer.h"
 
 #include "skyservice/render/atmosphere_passes.h"
-#include "skyservice/render/frame_images.h"
 #include "skyservice/render/frame_recording.h"
 #include "skyservice/render/frame_setup.h"
 #include "skyservice/render/light_volume.h"
@@ -97,15 +96,10 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
     const EyeOnWindow eyeOnWindow =
         placeEyeOnWindow(window.centreLatDeg, window.centreLonDeg, v.camera.eye.latDeg, v.camera.eye.lonDeg);
     const FrameOutputs outputs = FrameOutputs::of(request, quality);
-    SKY_TRY(ensureOutputImages(r, request.width, request.height, outputs, quality.reprojected));
     if (quality.reprojected)
-    {
         r.reconstruct.reprojection.block =
             chooseMarchBlock(window, v.camera.eye.altitudeM, eyeOnWindow.offsetM, quality.insideCloudBlockPx);
-        SKY_TRY(ensureReprojectionImages(r, request.width, request.height, r.reconstruct.reprojection.block.blockPx,
-                                         outputs.depthLayer));
-    }
-    SKY_TRY(prepareShadowMap(r, request));
+    SKY_TRY(prepareFrameImages(r, request, quality, outputs));
 
     FrameInputs& in = v.in;
     in.camera = &v.camera;
@@ -192,14 +186,15 @@ SkyStatus submitPrepared(Renderer& r, PreparedView& v, const ViewRequest& reques
     ticket.reprojected = quality.reprojected;
     ticket.lightVolume = v.params.lightVolume.z > 0.0f;
     if (shadow)
-        ticket.shadow.transmittance = reserveShadowMapReadback(r, frame, quality);  // first: a fixed offset
+        ticket.shadow.transmittance = reserveShadowMapReadback(r.shadowPass, frame, quality);  // first: a fixed offset
     recordFrame(r, frame, request, v.camera, v.sunMoon, v.in, v.params, ticket.plan, ticket.facts);
     if (shadow)
-        recordShadowMap(r, frame, request, quality, v.camera, v.sunMoon, ticket.shadow, ticket.facts);
+        recordFrameShadowMap(r, frame, request, quality, v.camera, v.sunMoon, ticket.shadow, ticket.facts);
     recordReadbacks(frame);
     status = submitFrameCommands(r.ctx, frame);
     if (!status.ok())
         return status;
+    r.newImages.clear();  // initialized by this frame
     ticket.pending = true;
     return SkyStatus::success();
 }
@@ -297,7 +292,7 @@ SkyStatus finishView(Renderer& r, FrameTicket& ticket, RenderResult& result, boo
         ShadowMapReadback regions = ticket.shadow;
         if (!copyPixels)
             regions.transmittance = regions.detail = ReadbackRegion{};  // the caller reads mappedFrame
-        collectShadowMap(r, frame, regions, result);
+        collectShadowMap(r.ctx, frame, regions, result);
     }
     else
     {

@@ -1,40 +1,21 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/renderer.h"
 
-
 namespace sky
 {
-namespace
-{
-
-SkyStatus createSampler(const Context& ctx, VkFilter filter, VkSamplerAddressMode mode, VkSampler& out)
-{
-    VkSamplerCreateInfo info = {VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    info.magFilter = filter;
-    info.minFilter = filter;
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    info.addressModeU = mode;
-    info.addressModeV = mode;
-    info.addressModeW = mode;
-    info.maxLod = 0.0f;
-    VK_TRY(vkCreateSampler(ctx.device, &info, nullptr, &out));
-    return SkyStatus::success();
-}
-}  // namespace
 
 SkyStatus createRenderer(Renderer& r, const RendererOptions& options)
 {
     SKY_TRY(createContext(r.ctx, options.context));
-    SKY_TRY(createSampler(r.ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT, r.linearRepeat));
-    SKY_TRY(createSampler(r.ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, r.linearClamp));
-    SKY_TRY(createSampler(r.ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_REPEAT, r.nearestRepeat));
+    SKY_TRY(createSamplers(r.ctx, r.samplers));
 
     for (uint32_t i = 0; i < kFramesInFlight; ++i)
         SKY_TRY(createFrameContext(r.ctx, r.memory, r.frames[i], i));
 
     SKY_TRY(createMarchPass(r.ctx, r.memory, r.march));
     SKY_TRY(createReconstructPass(r.ctx, r.reconstruct));
-    SKY_TRY(createCompositePass(r.ctx, r.memory, r.composite));
+    SKY_TRY(createCompositePass(r.ctx, r.composite));
+    SKY_TRY(createStandInImages(r.ctx, r.memory, r.standIns));
     SKY_TRY(createShadowMapPass(r.ctx, r.shadowPass));
 
     SKY_TRY(createWeatherImages(r.ctx, r.memory, r.weather));
@@ -61,10 +42,9 @@ void destroyRenderer(Renderer& r)
     destroyMarchPass(r.ctx, r.memory, r.march);
     destroyReconstructPass(r.ctx, r.memory, r.reconstruct);
     destroyCompositePass(r.ctx, r.memory, r.composite);
+    destroyStandInImages(r.ctx, r.memory, r.standIns);
     destroyShadowMapPass(r.ctx, r.memory, r.shadowPass);
-    for (VkSampler* s : {&r.linearRepeat, &r.linearClamp, &r.nearestRepeat})
-        if (*s)
-            vkDestroySampler(r.ctx.device, *s, nullptr), *s = VK_NULL_HANDLE;
+    destroySamplers(r.ctx, r.samplers);
     destroyContext(r.ctx);
 }
 

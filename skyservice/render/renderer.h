@@ -2,12 +2,13 @@
 // The headless renderer: owns the Vulkan context and every GPU resource, renders one view at a time.
 //
 // What it holds: the context, the memory tracker and the samplers; one object per pass, each owning its
-// program(s), its images and the key of what they hold (NoiseTextures, AtmospherePass, LightVolumePass,
-// MarchPass, ReconstructPass, CompositePass, ShadowMapPass: one header each); the weather in one place
-// (RendererWeather: the snapshot and its version, the staged weather, the window and its workers); the
-// frames in flight (FrameContext); and the experiment knobs (RenderTuning). A frame is prepared on the CPU
-// by render_view.cpp and recorded pass by pass by frame_recording.cpp; a pass's record function reads the
-// images of the passes before it through the Renderer.
+// program(s), every image it writes and the key of what they hold (NoiseTextures, AtmospherePass,
+// LightVolumePass, MarchPass, ReconstructPass, CompositePass, ShadowMapPass: one header each, none of which
+// knows the Renderer); the 1x1 stand-ins; the weather in one place (RendererWeather: the snapshot and its
+// version, the staged weather, the window and its workers); the frames in flight (FrameContext); and the
+// experiment knobs (RenderTuning). A frame is prepared on the CPU by render_view.cpp and recorded by the
+// frame function (frame_recording.cpp), the one place that hands each pass its declared inputs: the
+// images of the passes before it.
 //
 // Usage:
 //   Renderer r;  createRenderer(r, options)  -> noise and atmosphere tables are built once
@@ -29,7 +30,10 @@
 #include "skyservice/render/march_pass.h"
 #include "skyservice/render/noise_textures.h"
 #include "skyservice/render/reconstruct_pass.h"
+#include "skyservice/render/pass_frame.h"
+#include "skyservice/render/pass_images.h"
 #include "skyservice/render/shadow_map.h"
+#include "skyservice/render/stand_in_images.h"
 #include "skyservice/vk/programs.h"
 #include "weather_ingest/weather_snapshot.h"
 
@@ -56,13 +60,16 @@ struct Renderer
     ReconstructPass reconstruct;  ///< reprojection's reconstruct pass and history (reconstruct_pass.h)
     CompositePass composite;      ///< the display image and the other outputs (composite_pass.h)
     ShadowMapPass shadowPass;     ///< shadow_map.h
+    StandInImages standIns;       ///< bound where a pass has nothing to read or write (stand_in_images.h)
     RendererWeather weather;      ///< the weather drawn, its window and their workers (renderer_weather.h)
 
     /// The per-frame objects (frame_context.h), used in turn; frames[currentFrame] is the one being
     /// recorded, or the last one submitted.
     FrameContext frames[kFramesInFlight];
     uint32_t currentFrame = 0;
-    VkSampler linearRepeat = VK_NULL_HANDLE, linearClamp = VK_NULL_HANDLE, nearestRepeat = VK_NULL_HANDLE;
+    /// Images the passes made for the next frame, initialized at the top of its commands (pass_images.h).
+    std::vector<NewImage> newImages;
+    Samplers samplers;
 };
 
 /// A frame submitted by submitView and not yet collected by finishView.

@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/shadow_map.h"
 
-#include "skyservice/render/frame_recording.h"
-#include "skyservice/render/renderer.h"
+#include "skyservice/render/frame_timestamps.h"
 
 #include <GeographicLib/AzimuthalEquidistant.hpp>
 #include <GeographicLib/Geodesic.hpp>
@@ -44,7 +43,7 @@ glm::dvec2 shadowOffsetM(const glm::dvec3& lightEnu)
     return -kHighestShadowCasterM * glm::dvec2(lightEnu.x, lightEnu.y) / std::max(lightEnu.z, 0.05);
 }
 
-ShadowMapDrawing drawingFor(const Renderer& r, const ViewRequest& request, const QualitySettings& quality,
+ShadowMapDrawing drawingFor(const ShadowMapInputs& in, const ViewRequest& request, const QualitySettings& quality,
                             const CameraFrame& camera, const SunMoon& sunMoon)
 {
     ShadowMapDrawing d;
@@ -54,9 +53,9 @@ ShadowMapDrawing drawingFor(const Renderer& r, const ViewRequest& request, const
     d.quality = quality;
     d.quality.readback = false;
     d.quality.linearOutput = false;
-    d.tuning = r.tuning;
-    d.weatherVersion = r.weather.version;
-    d.window = r.weather.window.get();
+    d.tuning = in.tuning;
+    d.weatherVersion = in.weatherVersion;
+    d.window = in.window;
     d.unixTimeS = request.unixTimeS;
     d.eyeEcefM = camera.eyeEcefM;
     d.lightIsMoon = moonIsKeyLight(sunMoon);
@@ -74,28 +73,6 @@ bool sameMap(const ShadowMapDrawing& last, const ShadowMapDrawing& next)
     const double texelM = next.extentM / double(next.sizeTexels);
     const double shadowShiftM = glm::length(shadowOffsetM(next.lightEnu) - shadowOffsetM(last.lightEnu));
     return shadowShiftM < 0.5 * texelM && glm::length(next.eyeEcefM - last.eyeEcefM) < next.extentM / 64.0;
-}
-
-SkyStatus ensureShadowImages(Renderer& r, uint32_t size)
-{
-    ShadowMapPass& pass = r.shadowPass;
-    if (pass.image.image && pass.image.extent.width == size)
-        return SkyStatus::success();
-    VK_TRY(vkQueueWaitIdle(r.ctx.queue));  // resize only: never in steady state
-    destroyImage(r.ctx, r.memory, pass.image);
-    destroyImage(r.ctx, r.memory, pass.transmittance);
-    ImageDesc d;
-    d.width = d.height = size;
-    d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-    d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-    SKY_TRY(createImage(r.ctx, r.memory, pass.image, d, "cloud shadow map"));
-    d.format = VK_FORMAT_R32_SFLOAT;
-    SKY_TRY(createImage(r.ctx, r.memory, pass.transmittance, d, "cloud shadow map transmittance (float)"));
-    OneShot shot;
-    SKY_TRY(beginOneShot(r.ctx, shot));
-    transitionImage(shot.cmd, pass.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-    transitionImage(shot.cmd, pass.transmittance, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-    return endOneShot(r.ctx, shot);
 }
 
 }  // namespace
@@ -192,16 +169,25 @@ void destroyShadowMapPass(const Context& ctx, MemoryTracker& memory, ShadowMapPa
     destroyProgram(ctx, pass.program);
 }
 
-SkyStatus prepareShadowMap(Renderer& r, const ViewRequest& request)
+SkyStatus ensureShadowMapImages(ShadowMapPass& pass, ImageChanges& changes, uint32_t size)
 {
-    return request.shadowMap ? ensureShadowImages(r, request.shadowMapSize) : SkyStatus::success();
+    if (hasSize(pass.image, size, size))
+        return SkyStatus::success();
+    ImageDesc d;
+    d.width = d.height = size;
+    d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+    SKY_TRY(makeImage(changes, pass.image, d, "cloud shadow map"));
+    d.format = VK_FORMAT_R32_SFLOAT;
+    return makeImage(changes, pass.transmittance, d, "cloud shadow map transmittance (float)");
 }
 
 namespace
 {
 
-void drawShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request, const QualitySettings& quality,
-                   const CameraFrame& camera, const SunMoon& sunMoon, ShadowMapDrawing& drawing)
+void drawShadowMap(const PassFrame& f, FrameContext& frame, const ShadowMapPass& pass, const ShadowMapInputs& in,
+                   const ViewRequest& request, const QualitySettings& quality, const CameraFrame& camera,
+                   const SunMoon& sunMoon, ShadowMapDrawing& drawing)
 {
     const uint32_t size = request.shadowMapSize;
     ShadowMapGeometry g;
@@ -217,12 +203,13 @@ void drawShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request,
     push.grid = vec4(float(g.texelSizeM()), float(0.5 * g.extentM), 0.0f, 0.0f);
     push.params = uvec4(size, quality.shadowSteps, 0u, 0u);
 
-    VkCommandBuffer cmd = frame.cmd;
+    VkCommandBuffer cmd = f.cmd;
+    const Samplers& s = f.samplers;
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, frame.timestamps, kTsShadowBegin);
-    dispatch(r.ctx, cmd, r.shadowPass.program, size, size, 1, push,
-             {DescriptorInfo(frame.frameUniforms), DescriptorInfo(r.weather.windowImage, r.linearClamp),
-              DescriptorInfo(r.noise.base, r.linearRepeat), DescriptorInfo(r.noise.detail, r.linearRepeat),
-              DescriptorInfo(r.noise.curl, r.linearRepeat), DescriptorInfo(r.shadowPass.image)});
+    dispatch(f.ctx, cmd, pass.program, size, size, 1, push,
+             {DescriptorInfo(f.frameUniforms), DescriptorInfo(in.weatherWindow, s.linearClamp),
+              DescriptorInfo(in.noise.base, s.linearRepeat), DescriptorInfo(in.noise.detail, s.linearRepeat),
+              DescriptorInfo(in.noise.curl, s.linearRepeat), DescriptorInfo(pass.image)});
     computeBarrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, frame.timestamps, kTsShadowEnd);
     {
@@ -233,8 +220,8 @@ void drawShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request,
         blit.dstSubresource = blit.srcSubresource;
         blit.srcOffsets[1] = {int32_t(size), int32_t(size), 1};
         blit.dstOffsets[1] = blit.srcOffsets[1];
-        const Image& source = r.shadowPass.image;
-        const Image& target = r.shadowPass.transmittance;
+        const Image& source = pass.image;
+        const Image& target = pass.transmittance;
         transitionImage(cmd, source, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         transitionImage(cmd, target, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
         vkCmdBlitImage(cmd, source.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target.image,
@@ -243,7 +230,7 @@ void drawShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request,
         transitionImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
     }
     drawing.metadata = shadowMapMetadata(g, sunMoon, camera.localEarthRadiusM, request.unixTimeS,
-                                         r.weather.snapshot->validTimeUnixS);
+                                         in.weatherValidTimeUnixS);
     ShadowMapReference& ref = drawing.reference;
     ref.centreLatDeg = g.centreLatDeg;
     ref.centreLonDeg = g.centreLonDeg;
@@ -260,13 +247,13 @@ void drawShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request,
 
 }  // namespace
 
-void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request, const QualitySettings& quality,
-                     const CameraFrame& camera, const SunMoon& sunMoon, ShadowMapReadback& readback,
-                     RenderResult& facts)
+void recordShadowMap(const PassFrame& f, FrameContext& frame, ShadowMapPass& pass, const ShadowMapInputs& in,
+                     const ViewRequest& request, const QualitySettings& quality, const CameraFrame& camera,
+                     const SunMoon& sunMoon, ShadowMapReadback& readback, RenderResult& facts)
 {
     const uint32_t size = request.shadowMapSize;
-    ShadowMapDrawing next = drawingFor(r, request, quality, camera, sunMoon);
-    ShadowMapDrawing& drawn = r.shadowPass.drawn;
+    ShadowMapDrawing next = drawingFor(in, request, quality, camera, sunMoon);
+    ShadowMapDrawing& drawn = pass.drawn;
     const ReadbackRegion reserved = readback.transmittance;
     readback = ShadowMapReadback{};
     readback.recorded = true;
@@ -274,7 +261,7 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
     if (readback.redrawn)
     {
         next.id = drawn.id + 1;
-        drawShadowMap(r, frame, request, quality, camera, sunMoon, next);
+        drawShadowMap(f, frame, pass, in, request, quality, camera, sunMoon, next);
         drawn = std::move(next);
     }
     if (quality.readback)
@@ -284,13 +271,13 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
         const bool held = frame.shadowMapIdHeld == drawn.id && frame.shadowMapHeldOffset == reserved.offset;
         if (!held)
         {
-            queueImageReadback(frame, r.shadowPass.transmittance, reserved);
-            ++r.shadowPass.transmittanceCopies;
+            queueImageReadback(frame, pass.transmittance, reserved);
+            ++pass.transmittanceCopies;
             frame.shadowMapIdHeld = drawn.id;
             frame.shadowMapHeldOffset = reserved.offset;
         }
         if ((request.readback & kReadShadowDetail) != 0)
-            readback.detail = addImageReadback(frame, r.shadowPass.image);
+            readback.detail = addImageReadback(frame, pass.image);
     }
     facts.shadowMapSize = size;
     facts.shadowMap = drawn.metadata;
@@ -299,12 +286,12 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
     facts.shadowMapRedrawn = readback.redrawn;
 }
 
-ReadbackRegion reserveShadowMapReadback(const Renderer& r, FrameContext& frame, const QualitySettings& quality)
+ReadbackRegion reserveShadowMapReadback(const ShadowMapPass& pass, FrameContext& frame, const QualitySettings& quality)
 {
-    return quality.readback ? reserveImageReadback(frame, r.shadowPass.transmittance) : ReadbackRegion{};
+    return quality.readback ? reserveImageReadback(frame, pass.transmittance) : ReadbackRegion{};
 }
 
-void collectShadowMap(const Renderer& r, const FrameContext& frame, const ShadowMapReadback& readback,
+void collectShadowMap(const Context& ctx, const FrameContext& frame, const ShadowMapReadback& readback,
                       RenderResult& result)
 {
     if (!readback.recorded)
@@ -312,10 +299,10 @@ void collectShadowMap(const Renderer& r, const FrameContext& frame, const Shadow
     uint64_t ts[2] = {0, 0};
     if (!readback.redrawn)
         result.gpuMs["shadowMap"] = 0.0;
-    else if (r.ctx.timestampPeriodNs > 0 &&
-        vkGetQueryPoolResults(r.ctx.device, frame.timestamps, kTsShadowBegin, 2, sizeof ts, ts, sizeof(uint64_t),
+    else if (ctx.timestampPeriodNs > 0 &&
+        vkGetQueryPoolResults(ctx.device, frame.timestamps, kTsShadowBegin, 2, sizeof ts, ts, sizeof(uint64_t),
                               VK_QUERY_RESULT_64_BIT) == VK_SUCCESS)
-        result.gpuMs["shadowMap"] = double(ts[1] - ts[0]) * r.ctx.timestampPeriodNs * 1e-6;
+        result.gpuMs["shadowMap"] = double(ts[1] - ts[0]) * ctx.timestampPeriodNs * 1e-6;
     const uint8_t* mapped = static_cast<const uint8_t*>(frame.readback.mapped);
     result.shadowTransmittance.resize(size_t(readback.transmittance.bytes) / sizeof(float));
     if (readback.transmittance.bytes > 0)

@@ -10,12 +10,15 @@
 // which is how the weather window places the model's cells; the GPU puts the same point on the eye's
 // osculating sphere (error < 1 m within 50 km, 10 m at 200 km: skyservice/earth/geodesy.h).
 //
-// Usage (inside a frame): validateShadowMapRequest, prepareShadowMap, reserveShadowMapReadback, recordShadowMap,
-// then collectShadowMap.
+// Usage (inside a frame): validateShadowMapRequest, ensureShadowMapImages, reserveShadowMapReadback,
+// recordShadowMap, then collectShadowMap.
 #pragma once
 
 #include "shaders/shared/shadow_map_params.h"
 #include "skyservice/render/frame_context.h"
+#include "skyservice/render/noise_textures.h"
+#include "skyservice/render/pass_frame.h"
+#include "skyservice/render/pass_images.h"
 #include "skyservice/render/render_tuning.h"
 #include "skyservice/render/render_types.h"
 #include "skyservice/sky/ephemeris.h"
@@ -28,8 +31,6 @@
 
 namespace sky
 {
-
-struct Renderer;
 
 /// Where the texels of a shadow map lie on the earth.
 struct ShadowMapGeometry
@@ -68,6 +69,8 @@ bool moonIsKeyLight(const SunMoon& sunMoon);
 /**
  * Check the shadow-map part of a request.
  *
+ * @param[in,out] pass the pass (what it drew last).
+ * @param[in] in the weather window and noise the frame draws.
  * @param[in] request the view; shadowMapSize must be in [8, 8192], shadowMapExtentM in [100 m, 2 x the
  *   weather window's half extent] (the weather window must cover the map).
  * @param[in] quality the settings; shadowSteps must be in [1, 1024].
@@ -106,7 +109,7 @@ struct ShadowMapDrawing
     QualitySettings quality;          ///< with readback and linearOutput cleared (they change no texel)
     RenderTuning tuning;
     uint64_t weatherVersion = 0;
-    const void* window = nullptr;     ///< the weather window drawn from (Renderer::window)
+    const void* window = nullptr;     ///< the weather window drawn from (ShadowMapInputs::window)
     int64_t unixTimeS = 0;            ///< the view's whole second: a map is at most a second behind the wind
     glm::dvec3 eyeEcefM{0.0};
     glm::dvec3 lightEnu{0.0};
@@ -115,7 +118,7 @@ struct ShadowMapDrawing
     ShadowMapReference reference;     ///< RenderResult::shadowReference of the drawing
 };
 
-/// GPU objects of the pass, owned by the Renderer.
+/// The pass's program, its images and what they hold.
 struct ShadowMapPass
 {
     Program program;
@@ -138,21 +141,34 @@ struct ShadowMapReadback
 SkyStatus createShadowMapPass(const Context& ctx, ShadowMapPass& pass);
 void destroyShadowMapPass(const Context& ctx, MemoryTracker& memory, ShadowMapPass& pass);
 
-/// Makes the shadow-map images of the request's size (before the frame's commands begin; a resize waits for
-/// the queue, the steady frame does not).
-SkyStatus prepareShadowMap(Renderer& r, const ViewRequest& request);
+/// Makes the shadow-map images of `sizeTexels` (before the frame's commands begin; pass_images.h: a resize
+/// idles nothing).
+SkyStatus ensureShadowMapImages(ShadowMapPass& pass, ImageChanges& changes, uint32_t sizeTexels);
+
+/// What the shadow map reads: the frame's weather window and the noise.
+struct ShadowMapInputs
+{
+    const Image& weatherWindow;
+    const NoiseTextures& noise;
+    const void* window = nullptr;  ///< identity of the window drawn (a new one redraws the map)
+    uint64_t weatherVersion = 0;
+    int64_t weatherValidTimeUnixS = 0;
+    const RenderTuning& tuning;
+};
 
 /// Room for the transmittance in the frame's readback buffer, reserved before any other readback of the
 /// frame (so it lies at the same offset every frame and a reused map need not be copied again); goes into
 /// recordShadowMap's `readback.transmittance`. Empty without readback.
-ReadbackRegion reserveShadowMapReadback(const Renderer& r, FrameContext& frame, const QualitySettings& quality);
+ReadbackRegion reserveShadowMapReadback(const ShadowMapPass& pass, FrameContext& frame, const QualitySettings& quality);
 
 /**
  * Record the shadow map of the frame into its command buffer, and the copies of its texels.
  *
- * @param[in,out] r the renderer; the frame's uniforms, r.weather.window and r.weather.windowImage must hold the frame.
- * @param[in,out] frame the frame context being recorded (its readback buffer must have room:
+ * @param[in] f the frame being recorded (its uniforms hold the frame).
+ * @param[in,out] frame its frame context (timestamps; its readback buffer must have room:
  *   frameReadbackBytes counts the shadow map).
+ * @param[in,out] pass the pass (what it drew last).
+ * @param[in] in the weather window and noise the frame draws.
  * @param[in] request the view (shadowMapSize, shadowMapExtentM; validated; readback bits).
  * @param[in] quality the settings (shadowSteps, readback).
  * @param[in] camera the eye's frame (centre of the map, osculating radius).
@@ -161,13 +177,13 @@ ReadbackRegion reserveShadowMapReadback(const Renderer& r, FrameContext& frame, 
  *   (copied only when this frame context's buffer does not hold this drawing already).
  * @param[out] facts shadowMapSize and shadowMap (metadata).
  **********************************************************************/
-void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& request, const QualitySettings& quality,
-                     const CameraFrame& camera, const SunMoon& sunMoon, ShadowMapReadback& readback,
-                     RenderResult& facts);
+void recordShadowMap(const PassFrame& f, FrameContext& frame, ShadowMapPass& pass, const ShadowMapInputs& in,
+                     const ViewRequest& request, const QualitySettings& quality, const CameraFrame& camera,
+                     const SunMoon& sunMoon, ShadowMapReadback& readback, RenderResult& facts);
 
 /// After the frame's fence: shadowTransmittance, shadowOpticalDepth (when read back) and gpuMs["shadowMap"]
 /// (0 when the frame reused the last drawing).
-void collectShadowMap(const Renderer& r, const FrameContext& frame, const ShadowMapReadback& readback,
+void collectShadowMap(const Context& ctx, const FrameContext& frame, const ShadowMapReadback& readback,
                       RenderResult& result);
 
 }  // namespace sky

@@ -88,8 +88,8 @@ TEST_F(Memory, FreshImagesShrinkWhenTheEyeLeavesTheCloudAndHistoryStays)
     q.insideCloudBlockPx = 1;
     RenderResult inside = renderOk(v, q);
     ASSERT_EQ(inside.marchBlockPx, 1u) << inside.marchBlockReason;
-    EXPECT_EQ(renderer->reconstruct.freshCloudImage.extent.width, v.width);
-    EXPECT_EQ(renderer->reconstruct.freshCloudImage.extent.height, v.height);
+    EXPECT_EQ(renderer->march.freshCloudImage.extent.width, v.width);
+    EXPECT_EQ(renderer->march.freshCloudImage.extent.height, v.height);
     const uint64_t insideBytes = totalBytes();
 
     v.pose.altitudeM = 4000.0;
@@ -99,9 +99,9 @@ TEST_F(Memory, FreshImagesShrinkWhenTheEyeLeavesTheCloudAndHistoryStays)
     // One texel per 4x4 block, and beside and below them room for the columns and rows a turn or a pitch
     // change marches in full (reprojection.h NewLines): 4 texels per line.
     const uint32_t freshWidth = v.width / 4 + maxNewColumns(v.width) * 4;
-    EXPECT_EQ(renderer->reconstruct.freshCloudImage.extent.width, freshWidth);
-    EXPECT_EQ(renderer->reconstruct.freshCloudImage.extent.height, v.height / 4 + maxNewRows(v.height) * 4);
-    EXPECT_EQ(renderer->reconstruct.freshDepthImage.extent.width, freshWidth);
+    EXPECT_EQ(renderer->march.freshCloudImage.extent.width, freshWidth);
+    EXPECT_EQ(renderer->march.freshCloudImage.extent.height, v.height / 4 + maxNewRows(v.height) * 4);
+    EXPECT_EQ(renderer->march.freshDepthImage.extent.width, freshWidth);
     EXPECT_LT(totalBytes(), insideBytes);
     std::printf("64x36 reprojected: %llu bytes inside the deck, %llu above it\n", (unsigned long long)insideBytes,
                 (unsigned long long)totalBytes());
