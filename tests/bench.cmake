@@ -1,5 +1,5 @@
 # sky-bench command-line tests (bench.*): exit codes, messages and the shape of its output. Timings are
-# never asserted here (DESIGN §6: lavapipe wall clock means nothing); BENCHMARKS.md holds GPU figures.
+# never asserted here (lavapipe wall clock says nothing of a GPU's); BENCHMARKS.md holds GPU figures.
 set(SKY_BENCH_EXPECT ${CMAKE_CURRENT_LIST_DIR}/cli/expect.sh)
 set(SKY_BENCH_BIN $<TARGET_FILE:sky-bench>)
 set(SKY_BENCH_TMP ${CMAKE_CURRENT_BINARY_DIR}/bench_tmp)

@@ -1,4 +1,4 @@
-# Command-line tests of skyservice (cli.*): exit codes and messages (STYLE §16: good input passes, bad
+# Command-line tests of skyservice (cli.*): exit codes and messages (docs/style.md §14: good input passes, bad
 # input fails with a message naming what was wrong). Each comment names what it guards.
 set(SKY_EXPECT ${CMAKE_CURRENT_LIST_DIR}/cli/expect.sh)
 set(SKY_BIN $<TARGET_FILE:skyservice>)

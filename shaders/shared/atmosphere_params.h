@@ -11,7 +11,7 @@
 #define SKY_SHARED_ATMOSPHERE_PARAMS_H
 #include "shaders/shared/bindings.h"
 
-// std140: vec4 members only, so the C++ layout is the GLSL layout (STYLE §5).
+// std140: vec4 members only, so the C++ layout is the GLSL layout (docs/style.md §7).
 struct AtmosphereParams
 {
     vec4 rayleighScattering;  // rgb: Rayleigh scattering at the bottom (1/m); w: Rayleigh scale height (m)

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Compile-time limits and descriptor slots shared by GLSL and C++ (STYLE §12). Each value says why.
+// Compile-time limits and descriptor slots shared by GLSL and C++ (docs/style.md §7). Each value says why.
 #ifndef SKY_SHARED_BINDINGS_H
 #define SKY_SHARED_BINDINGS_H
 #include "shaders/shared/prelude.h"

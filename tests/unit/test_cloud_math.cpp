@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Cloud shader math (shaders/lib/shell.glsl, cloud_shape.glsl, large_scale.glsl) compiled as C++ and checked
-// against analytic cases and a double-precision reference (STYLE §8, §16).
+// against analytic cases and a double-precision reference (docs/style.md §8, §14).
 #include "shaders/shared/noise_params.h"
 #include "shaders/shared/weather_window.h"
 
