@@ -37,7 +37,7 @@ add_test(NAME bench.clear_json COMMAND ${CMAKE_COMMAND} -E cat ${SKY_BENCH_TMP}/
 set_tests_properties(bench.clear_json PROPERTIES DEPENDS bench.clear_small_validated
                      PASS_REGULAR_EXPRESSION "\"gpuFramesPerCall\": 2.*\"height\": 18.*\"totalBytes\".*\"name\": \"clear\"")
 
-# sky-service-bench (issue 20): the real daemon and libskyclient clients on a tiny view. One synthetic scene
+# sky-service-bench: the real daemon and libskyclient clients on a tiny view. One synthetic scene
 # (its weather goes through a snapshot file and load_weather), both transports, a few frames: the table's
 # zero-copy row has its cells and no torn frame, and the JSON (checked by bench/check_service_json.cmake) counts every frame,
 # delivers some per second, and orders its latencies. Timings themselves are never asserted.

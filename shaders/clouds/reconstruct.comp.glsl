@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Temporal reconstruction of the cloud image (docs/model.md, issue 5).
+// Temporal reconstruction of the cloud image (docs/model.md).
 //
 // The march marched one pixel of every BxB block this frame (B = frame.reprojection.x: 4, or 2 and 1
 // near and inside a cloud layer; position frame.reprojection.yz in the block) into a block-resolution

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// sky-bench: GPU time per pass and wall time per frame of the benchmark scenes (issue 5).
+// sky-bench: GPU time per pass and wall time per frame of the benchmark scenes (BENCHMARKS.md).
 //
 //   sky-bench --scene all --width 1920 --height 1080 --frames 100 --warmup 10 --json bench.json
 //

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The weather windows a moving eye needs, prepared off the frame path (issue 5).
+// The weather windows a moving eye needs, prepared off the frame path so that no frame waits for one.
 //
 // A window is centred on a lattice node (earth/window_lattice.h), so a moving eye needs a new one only
 // when it crosses into another lattice cell. The renderer asks for the window of the eye's node every

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The real-time lighting against the reference path tracer on the look views of issue 22 (built-in cumulus,
+// The real-time lighting against the reference path tracer on the look views (look_views.h; built-in cumulus,
 // base 1200 m, 44.3 N 7.5 E, midsummer noon): from below at 500 m looking up 10 deg, and from above at
 // 4000 m looking down 15 deg. The reference is rendered here at a small size and few samples per pixel;
 // the statistics are means (tests/gpu/look_stats.h), which few samples leave unbiased where the median of a
