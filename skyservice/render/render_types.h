@@ -34,9 +34,8 @@ struct QualitySettings
     /// View samples behind a view transmittance below this take the base shape without detail erosion
     /// (0: never): there little of the sample reaches the eye. 0.2, not 0.1, because the current cloud
     /// shapes make each eroded sample dear (faster frames in the deck and cumulus scenes: BENCHMARKS.md);
-    /// the 320x180 contact sheet
-    /// of the bench scenes 45-55 dB (display) of 0.1's, and the deck from above 41 dB (cloud radiance) of
-    /// the render that erodes every sample (47 dB at 0.1; tests/gpu/test_render.cpp).
+    /// the 320x180 contact sheet of the bench scenes 45-55 dB (display) of 0.1's, and the deck from above
+    /// 41 dB (cloud radiance) of the render that erodes every sample (47 dB at 0.1; tests/gpu/test_render.cpp).
     double detailMinTransmittance = 0.2;
     /// Those deep view samples also step this many times further (1: the same step): fewer lookups per
     /// frame (BENCHMARKS.md); the 320x180 contact sheet of the bench scenes 67 dB of 1.
