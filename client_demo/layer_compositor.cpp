@@ -185,7 +185,7 @@ void compositeLayers(const LatestFrame& frame, const CompositeOptions& options, 
         scene.eyeInMap = offsetFromShadowCentreM(view.lat_deg, view.lon_deg, frame.shadow);
     }
 
-    // The terrain's ray march costs ~1 us a pixel (a few hundred ms at 640x360 on one core): bands of rows
+    // The terrain's ray march is too slow for one core at the display's rate: bands of rows
     // on the machine's cores. Each band writes its own rows and counts into its own stats.
     const uint32_t cores = std::max(1u, std::min(std::thread::hardware_concurrency(), 16u));
     const uint32_t bands = std::max(1u, std::min(cores, frame.height / 16));

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The window's swapchain (STYLE §20: written for this demo after niagara's swapchain.cpp shape): created
+// The window's swapchain (docs/style.md §15; written for this demo after niagara's swapchain.cpp shape): created
 // for the surface's current size, re-created when that changes, and a SwapchainStatus that tells the
 // frame loop whether it can draw.
 #pragma once

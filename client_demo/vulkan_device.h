@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-/// A Vulkan call that can fail only through programmer error: print and abort (STYLE §4), in every build.
+/// A Vulkan call that can fail only through programmer error: print and abort (docs/style.md §5), in every build.
 #define DEMO_VK_CHECK(call)                                                                                            \
     do                                                                                                                 \
     {                                                                                                                  \

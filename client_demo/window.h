@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The demo's GLFW window (STYLE §20: the only window in the project): creation, its Vulkan surface, and the
+// The demo's GLFW window (docs/style.md §15: the only window in the project): creation, its Vulkan surface, and the
 // pilot's keys and mouse turned into a FlightInput.
 //
 // Keys: A/D or Left/Right turn, W/S or Up/Down pitch (W = nose up), Q/E slower/faster, R/F or

@@ -1,5 +1,5 @@
 # Sun/moon ephemeris and the atmosphere model (ctest names atmo.*). CPU only: the shader math of
-# shaders/lib/atmosphere*.glsl and phase.glsl is compiled as C++ (STYLE §8).
+# shaders/lib/atmosphere*.glsl and phase.glsl is compiled as C++ (docs/style.md §8).
 add_executable(test_atmosphere
     ${CMAKE_CURRENT_LIST_DIR}/unit/test_ephemeris.cpp
     ${CMAKE_CURRENT_LIST_DIR}/unit/test_atmosphere.cpp)

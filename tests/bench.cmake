@@ -1,5 +1,5 @@
 # sky-bench command-line tests (bench.*): exit codes, messages and the shape of its output. Timings are
-# never asserted here (DESIGN §6: lavapipe wall clock means nothing); BENCHMARKS.md holds GPU figures.
+# never asserted here (lavapipe wall clock says nothing of a GPU's); BENCHMARKS.md holds GPU figures.
 set(SKY_BENCH_EXPECT ${CMAKE_CURRENT_LIST_DIR}/cli/expect.sh)
 set(SKY_BENCH_BIN $<TARGET_FILE:sky-bench>)
 set(SKY_BENCH_TMP ${CMAKE_CURRENT_BINARY_DIR}/bench_tmp)
@@ -37,7 +37,7 @@ add_test(NAME bench.clear_json COMMAND ${CMAKE_COMMAND} -E cat ${SKY_BENCH_TMP}/
 set_tests_properties(bench.clear_json PROPERTIES DEPENDS bench.clear_small_validated
                      PASS_REGULAR_EXPRESSION "\"gpuFramesPerCall\": 2.*\"height\": 18.*\"totalBytes\".*\"name\": \"clear\"")
 
-# sky-service-bench (issue 20): the real daemon and libskyclient clients on a tiny view. One synthetic scene
+# sky-service-bench: the real daemon and libskyclient clients on a tiny view. One synthetic scene
 # (its weather goes through a snapshot file and load_weather), both transports, a few frames: the table's
 # zero-copy row has its cells and no torn frame, and the JSON (checked by bench/check_service_json.cmake) counts every frame,
 # delivers some per second, and orders its latencies. Timings themselves are never asserted.

@@ -1,4 +1,4 @@
-# Tests of skyservice/cigi/ (issue 21: CIGI 3.3 IG interface, CPU layer). Every test name starts with "cigi.".
+# Tests of skyservice/cigi/ (the CIGI 3.3 IG interface, CPU layer). Every test name starts with "cigi.".
 set(SKY_CIGI_TEST_DIR ${CMAKE_CURRENT_LIST_DIR}/cigi)
 
 if(TARGET sky_cigi)

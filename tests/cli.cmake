@@ -1,4 +1,4 @@
-# Command-line tests of skyservice (cli.*): exit codes and messages (STYLE §16: good input passes, bad
+# Command-line tests of skyservice (cli.*): exit codes and messages (docs/style.md §14: good input passes, bad
 # input fails with a message naming what was wrong). Each comment names what it guards.
 set(SKY_EXPECT ${CMAKE_CURRENT_LIST_DIR}/cli/expect.sh)
 set(SKY_BIN $<TARGET_FILE:skyservice>)
@@ -17,7 +17,7 @@ add_test(NAME cli.render.bad_size COMMAND ${SKY_EXPECT} 2 "--width" ${SKY_BIN} r
 # Unknown options are usage errors.
 add_test(NAME cli.render.unknown_option COMMAND ${SKY_EXPECT} 2 "junk" ${SKY_BIN} render --junk)
 # A missing subcommand is a usage error.
-# Without a subcommand skyservice is the daemon (issue 6): a bad daemon option is refused with exit 2.
+# Without a subcommand skyservice is the daemon: a bad daemon option is refused with exit 2.
 add_test(NAME cli.daemon.bad_log_level COMMAND ${SKY_EXPECT} 2 "log-level" ${SKY_BIN} --log-level loud)
 # A missing weather file is named in the error (exit 3), before the GPU starts.
 add_test(NAME cli.render.missing_weather COMMAND ${SKY_EXPECT} 3 "no-such-file.skywx" ${SKY_BIN} render
@@ -79,5 +79,5 @@ add_test(NAME cli.render.no_vulkan_driver COMMAND ${CMAKE_COMMAND} -E env VK_DRI
 # A device index that does not exist is named.
 add_test(NAME cli.render.no_such_device COMMAND ${SKY_EXPECT} 1 "--device 42" ${SKY_BIN} render --device 42
          --quality test --width 16 --height 16 --out ${SKY_CLI_TMP}/never)
-# The CIGI options (issue 21) are range-checked like the others.
+# The CIGI options are range-checked like the others.
 add_test(NAME cli.daemon.bad_cigi_port COMMAND ${SKY_EXPECT} 2 "--cigi-port" ${SKY_BIN} --cigi-port 70000)

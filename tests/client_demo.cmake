@@ -1,4 +1,4 @@
-# client_demo (issue 6): the CPU compositing (display frame and, issue 20, depth compositing with layers)
+# client_demo: the CPU compositing (display frame and depth compositing with the compositing layers)
 # and shadow lookup as unit tests, and the demo end to end against the real daemon (headless capture over
 # both transports, compositing by layers, and the window under Xvfb). The
 # end-to-end tests skip (exit 77) until `skyservice` runs the daemon (it accepts --config).

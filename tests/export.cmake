@@ -1,4 +1,4 @@
-# Zero-copy frame export tests (issue 6, export.*): render, export through VK_KHR_external_memory_fd,
+# Zero-copy frame export tests (export.*): render, export through VK_KHR_external_memory_fd,
 # pass the fds over a socketpair (SCM_RIGHTS) to an exec'd child that imports them with skyclient_vulkan
 # into its own VkDevice, validation on in both processes; clean failure without the extension.
 if(NOT TARGET skyclient_vulkan)  # normally added by skyservice/client/CMakeLists.txt

@@ -1,4 +1,4 @@
-# Geo-referencing tests (issue 4, georef.*): an isolated cell lands in the direction GeographicLib
+# Geo-referencing tests (georef.*): an isolated cell lands in the direction GeographicLib
 # gives (mid-latitude, 78 N, across the antimeridian); the real GFS sample renders its low deck and its
 # clear sky. GPU tests, validation on.
 add_executable(test_georef gpu/test_georef.cpp gpu/scenes.cpp)
@@ -9,7 +9,7 @@ if(TARGET sky_ingest)
 endif()
 gtest_discover_tests(test_georef TEST_PREFIX "georef." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900)
 
-# Geo-referencing on every grid type (issue 23, grid_georef.*): a cloud cell written with ecCodes on a
+# Geo-referencing on every grid type ecCodes can locate (grid_georef.*): a cloud cell written with ecCodes on a
 # Lambert (one and two parallels), polar stereographic (north, south), Mercator, rotated, reduced Gaussian
 # and reduced lat/lon grid, converted by sky_ingest, lands within 1 degree of its direction from 50 km.
 if(TARGET sky_ingest)

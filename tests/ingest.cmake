@@ -1,4 +1,4 @@
-# Tests of weather_ingest/ (issue 3). Every test name starts with "ingest.".
+# Tests of weather_ingest/. Every test name starts with "ingest.".
 set(SKY_INGEST_TEST_DIR ${CMAKE_CURRENT_LIST_DIR}/ingest)
 
 add_executable(ingest_weather_tests ${SKY_INGEST_TEST_DIR}/snapshot_file_test.cpp

@@ -1,4 +1,4 @@
-# CPU-side tests of the service's inter-process layer (issue 6): the shared-memory frame ring, the
+# CPU-side tests of the service's inter-process layer: the shared-memory frame ring, the
 # control socket server, protocol validation, and libskyclient against an in-test fake service (no
 # renderer, no Vulkan). Labelled "cpu": `./sky test` runs them again under ASan + UBSan.
 if(TARGET sky_ipc AND TARGET skyclient)

@@ -1,4 +1,4 @@
-# The reference path tracer (issue 22, reference.*): its sampling compiled as C++ (CPU), and on the GPU the
+# The reference path tracer (reference.*): its sampling compiled as C++ (CPU), and on the GPU the
 # plane-parallel slab against the published transfer, energy conservation, the built-in clouds.
 add_executable(test_reference_sampling unit/test_phase_sampling.cpp)
 target_link_libraries(test_reference_sampling PRIVATE sky_renderer GTest::gtest_main sky_warnings)
@@ -21,7 +21,7 @@ add_test(NAME reference.cli.small_validated COMMAND ${CMAKE_CURRENT_LIST_DIR}/cl
 add_test(NAME reference.cli.bad_phase COMMAND ${CMAKE_CURRENT_LIST_DIR}/cli/expect.sh 2 "--phase"
          $<TARGET_FILE:skyservice> render --reference --phase rayleigh)
 
-# The real-time lighting against the reference on the look views of issue 22 (reference.ReferenceLooks.*): the
+# The real-time lighting against the reference on the look views (app/look_views.h, reference.ReferenceLooks.*): the
 # mean cloud luminance and the underside/top ratio, the reference rendered in the test at 48x27 and few samples;
 # the view from above finishes with bounded work, and the dispatch bound ends a render that has not.
 add_executable(test_reference_looks gpu/test_reference_looks.cpp gpu/look_stats.cpp gpu/scenes.cpp)

@@ -1,4 +1,4 @@
-# Temporal reprojection tests (issue 5, reprojection.*): phase order, history limits and march block on
+# Temporal reprojection tests (reprojection.*): phase order, history limits and march block on
 # the CPU; convergence, teleport, weather swap, time jump and pan PSNR on the GPU with validation on.
 add_library(sky_reprojection_test_support STATIC gpu/scenes.cpp gpu/image_compare.cpp gpu/sharpness.cpp)
 target_link_libraries(sky_reprojection_test_support PUBLIC sky_renderer GTest::gtest sky_warnings)

@@ -1,4 +1,4 @@
-# End-to-end tests of the service (issue 6): each starts the real `skyservice` daemon as a child process
+# End-to-end tests of the service: each starts the real `skyservice` daemon as a child process
 # with a temporary config (tiny frames, quality "test", its own socket and shared-memory names) and
 # drives it through libskyclient and raw sockets. service.soak.* is the short CI soak;
 # tests/service/soak.sh runs a long one by hand.

@@ -1,4 +1,4 @@
-# libFuzzer targets of the daemon's readers of untrusted text (issue 24): parseRequest and the config
+# libFuzzer targets of the daemon's readers of untrusted text (none may crash it): parseRequest and the config
 # reader, built with clang by a separate project (skyservice/service/fuzz), then run a few seconds each.
 set(SKY_SERVICE_FUZZ_DIR ${CMAKE_CURRENT_BINARY_DIR}/service-fuzz)
 get_filename_component(SKY_SERVICE_FUZZ_ROOT ${CMAKE_CURRENT_LIST_DIR}/.. ABSOLUTE)

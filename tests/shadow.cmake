@@ -1,4 +1,4 @@
-# Cloud shadow map tests (issue 4, shadow.*): clear, overcast, cirrus and isolated-cell shadows on the
+# Cloud shadow map tests (shadow.*): clear, overcast, cirrus and isolated-cell shadows on the
 # GPU with validation on, the metadata against GeographicLib, and the command line's files.
 add_executable(test_shadow gpu/test_shadow_map.cpp gpu/scenes.cpp)
 target_link_libraries(test_shadow PRIVATE sky_renderer GTest::gtest_main sky_warnings)

@@ -1,4 +1,4 @@
-# The weather window for a moving eye (issue 5): the lattice of window centres on the CPU (window.*,
+# The weather window for a moving eye: the lattice of window centres on the CPU (window.*,
 # label cpu), and on the GPU (lavapipe, validation on) that crossing a cell edge moves no cloud and that
 # a flight makes its windows on the worker thread, not on the frame path. A new weather staged off the
 # frame path and the speed-dependent look-ahead: their CPU logic (window.WeatherStage.*,

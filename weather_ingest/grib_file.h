@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// GribFile / GribMessage: the only place that calls ecCodes for reading (STYLE §11). Handles are owned
+// GribFile / GribMessage: the only place that calls ecCodes for reading (docs/style.md §11). Handles are owned
 // by std::unique_ptr with codes_handle_delete; every ecCodes error becomes an IngestError that names the
 // file, the message number (1-based) and the key or field.
 #pragma once

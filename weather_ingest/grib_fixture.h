@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Test fixtures written with ecCodes from Debian's samples: one cloud disc at a known latitude/longitude on
-// a grid of a given kind (issue 23's placement and geo-reference tests). Not used by conversion.
+// a grid of a given kind (the grid-type placement and geo-reference tests). Not used by conversion.
 #pragma once
 
 #include <string>

@@ -142,9 +142,8 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
     vec3 radial = normalize(p + vec3(0.0f, 0.0f, frame.earth.y));  // local vertical at p
     float radPerM = 6.2831853f / (float(NOISE_OFFSET_MODULUS_HIGH_PERIODS) * frame.noiseScale.w);
     float best = 0.0f;
-    // Unrolled: with the shapes of issue 22 the unrolled loop made the reprojected 1080p march on the H200
-    // 4-11 % faster in cumulus, stratocumulus and cumulonimbus (the rolled one had been 1-3 % faster before
-    // them; BENCHMARKS.md, eighteenth session). The including passes enable GL_EXT_control_flow_attributes.
+    // Unrolled: with the current cloud shapes the unrolled loop makes the march faster in cumulus,
+    // stratocumulus and cumulonimbus (BENCHMARKS.md). The including passes enable GL_EXT_control_flow_attributes.
     [[unroll]] for (int k = 0; k <= MAX_CLOUD_LAYERS; ++k)
     {
         vec4 range = frame.layerRangeM[k];

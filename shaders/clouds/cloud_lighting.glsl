@@ -287,7 +287,7 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
     // at the ray's first lit sample (at litFirstT; < 0: none yet) times what its octaves pass
     // (directSum), plus the ambient light, linear in the height fraction (ambientSum, ambientHeightSum).
     // The key light and its far shadow (far_shadow.glsl) are then taken once, after the loop: inside it
-    // the far shadow's lookups spilled registers and cost the march 7-10 % on the H200.
+    // the far shadow's lookups spilled registers and slowed the march (BENCHMARKS.md).
     float litFirstT = -1.0f;
     float directSum = 0.0f;
     float ambientSum = 0.0f;

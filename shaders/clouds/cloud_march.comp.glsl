@@ -74,8 +74,8 @@ uint marchPixel(ivec2 pixel, ivec2 texel)
     // The volumetric clouds, then the 2D high-cloud layer in front of or behind them. The march starts
     // from a transmittance of 1 whether or not the high cloud lies in front: the high cloud is sampled
     // after it, so that nothing of it is held in registers through the march. With that and fewer variables
-    // carried through the march's loop (marchClouds) the NVIDIA compiler gives this shader 80 registers
-    // instead of 123: more rays in flight, full-resolution frames ~20 % faster (BENCHMARKS.md).
+    // carried through the march's loop (marchClouds) the NVIDIA compiler gives this shader far fewer
+    // registers: more rays in flight, faster full-resolution frames (BENCHMARKS.md).
     CloudPath clouds = CloudPath(vec3(0.0f), 1.0f, 0.0f, 0.0f, 0.0f);
     uint lookups = 0u;
     float tEnter;

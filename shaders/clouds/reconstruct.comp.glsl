@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Temporal reconstruction of the cloud image (docs/model.md, issue 5).
+// Temporal reconstruction of the cloud image (docs/model.md).
 //
 // The march marched one pixel of every BxB block this frame (B = frame.reprojection.x: 4, or 2 and 1
 // near and inside a cloud layer; position frame.reprojection.yz in the block) into a block-resolution
@@ -16,8 +16,8 @@
 // (shaders/lib/cloud_history.glsl): the composite reads the pixels not marched this frame from it (the
 // marched ones from the fresh image, at full precision), and the next frame reprojects it.
 //
-// Cost (issue 5 targets the whole 4K frame at 0.35 ms; this pass took 0.25 ms of it on an H200, since
-// 0.09-0.11 ms with a still eye and 0.19-0.20 ms at 250 m/s, BENCHMARKS.md): the fresh neighbourhood is loaded only when a pixel's history moved (a still
+// Cost (this pass is a large share of a reprojected frame's time budget, BENCHMARKS.md):
+// the fresh neighbourhood is loaded only when a pixel's history moved (a still
 // pixel is never colour-clamped), and once for all the pixels of an invocation's quad
 // (RECONSTRUCT_QUAD_PX^2 pixels, inside one block for every block size: B = 4 or 2, and B = 1 marches
 // every pixel); the nearest fresh pixel is computed, not searched with a depth load per candidate; the
@@ -80,7 +80,7 @@ vec4 historySample(vec2 uv)
 // at most 0.0055; left out and the rest renormalized) is five bilinear reads: the inner 2x2 texels in one
 // (the pair of weights w1, w2 of an axis is one read at w2 / (w1 + w2) between them, weighing w1 + w2),
 // and each side's pair of the outer ring in one. The texture unit decodes and weighs the texels; unpacking
-// twelve texels by hand and weighing them cost 17-30 us a 1080p frame on an H200 over a bilinear read
+// twelve texels by hand and weighing them costs more GPU time a frame than these bilinear reads
 // (BENCHMARKS.md). Its weights are rounded to 1/256 on common GPUs: the read is then off by at most 1/512 of
 // the step between neighbouring texels. The overshoot is cut at 0 and at alpha 1; the colour clamp against
 // the fresh neighbourhood follows. Where the inner read holds no cloud the result is 0 whatever the outer

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Atmosphere math without textures (CPU-tested, STYLE §8): ray distances to the atmosphere and ground
+// Atmosphere math without textures (CPU-tested, docs/style.md §8): ray distances to the atmosphere and ground
 // spheres, density profiles, transmittance by quadrature, LUT parameterisations and phase functions.
 // Sources: Bruneton 2017 "Precomputed Atmospheric Scattering: a New Implementation" (functions.glsl:
 // distances, transmittance LUT mapping, Cornette-Shanks, sun visibility), Hillaire 2020 "A Scalable and

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Where in a layer cloud can be at all, from the shape terms of cloud_shape.glsl alone (no textures; CPU-tested,
-// STYLE §8). Included after cloud_shape.glsl.
+// docs/style.md §8). Included after cloud_shape.glsl.
 //
 // Why: the density is applyCoverage(shape, coverage') with shape = the equalized base noise (always below 1)
 // times the genus's height profile, and coverage' = coverage x coverageHeightFactor. Where the profile cannot

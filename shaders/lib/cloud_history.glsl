@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The cloud history of reprojected frames (issue 5: device memory at 1080p <= 64 MB).
+// The cloud history of reprojected frames, packed small: all device memory at 1080p must stay <= 64 MB.
 //
 // Two 32-bit images a frame, 8 bytes a texel (the RGBA16F radiance and R32F depth they replaced took 12).
 // Shaders write them as plain bits through R32_UINT storage views (a core storage format) and read them

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Cloud shape and light-transport terms that do not touch textures (CPU-tested, STYLE §8).
+// Cloud shape and light-transport terms that do not touch textures (CPU-tested, docs/style.md §8).
 // Sources: Schneider 2015/2016 (remap, coverage, Beer-powder), Häggström 2018 (anvil shape and density
 // terms), Hillaire 2016 (energy-conserving integration), Wrenninge et al. 2013 (scattering octaves).
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Cloud phase functions, each normalised to integrate to 1 over the sphere (CPU-tested, STYLE §8).
+// Cloud phase functions, each normalised to integrate to 1 over the sphere (CPU-tested, docs/style.md §8).
 // nu is the cosine of the scattering angle (1 = straight on, the light continuing forward).
 // Sources: Henyey & Greenstein 1941; two lobes as in Schneider 2015 and Hillaire 2016; Draine 2003
 // ("Scattering by Interstellar Dust Grains"); Jendersie & d'Eon 2023, "An Approximate Mie Scattering

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Random numbers and direction sampling for the reference path tracer (CPU-tested, STYLE §8). Requires
+// Random numbers and direction sampling for the reference path tracer (CPU-tested, docs/style.md §8). Requires
 // phase.glsl (and shaders/shared/reference_params.h for the REFERENCE_PHASE_* selectors).
 // Sources: O'Neill 2014, "PCG: A Family of Simple Fast Space-Efficient Statistically Good Algorithms for
 // Random Number Generation" (the RXS-M-XS 32-bit output, as in Jarzynski & Olano 2020, "Hash Functions

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Where a view ray's march start offset comes from (docs/model.md "March", issue 5 "jitter in world space").
+// Where a view ray's march start offset comes from (docs/model.md "March").
 //
 // The offset is read from the blue-noise tile at a texel chosen by the ray's direction in earth-fixed
 // axes, not by its screen pixel: the same world direction gets the same offset whatever the camera's

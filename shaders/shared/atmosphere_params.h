@@ -11,7 +11,7 @@
 #define SKY_SHARED_ATMOSPHERE_PARAMS_H
 #include "shaders/shared/bindings.h"
 
-// std140: vec4 members only, so the C++ layout is the GLSL layout (STYLE §5).
+// std140: vec4 members only, so the C++ layout is the GLSL layout (docs/style.md §7).
 struct AtmosphereParams
 {
     vec4 rayleighScattering;  // rgb: Rayleigh scattering at the bottom (1/m); w: Rayleigh scale height (m)
@@ -50,7 +50,7 @@ struct AtmosphereParams
 #define ATMOSPHERE_AERIAL_STEPS 10
 // Aerial-perspective LUT (shaders/atmosphere/aerial_perspective_lut.comp.glsl): the in-scattered light
 // and the transmittance between the eye and a distance along a direction, for the composite, which
-// otherwise integrated 10 steps of 4 LUT fetches per cloudy pixel (0.1-0.15 ms at 1080p on an H200).
+// otherwise integrated 10 steps of 4 LUT fetches per cloudy pixel.
 // Directions use the sky-view LUT's mapping (absolute azimuth, zenith rows crowded at the horizon), not
 // screen froxels (Hillaire 2020 §5.4), so that channels at a seam read the same texels. 80 x 44
 // directions (an even row count: no row lies exactly on the horizon, where the GPU and the CPU

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Compile-time limits and descriptor slots shared by GLSL and C++ (STYLE §12). Each value says why.
+// Compile-time limits and descriptor slots shared by GLSL and C++ (docs/style.md §7). Each value says why.
 #ifndef SKY_SHARED_BINDINGS_H
 #define SKY_SHARED_BINDINGS_H
 #include "shaders/shared/prelude.h"
@@ -13,10 +13,8 @@
 #define WORKGROUP_SIZE_3D 4
 // Pixels per axis of the quad each reconstruct invocation handles (shaders/clouds/reconstruct.comp.glsl):
 // 1 or 2 (a 2x2 quad lies inside one march block for every block size, so its pixels share one fresh
-// neighbourhood). Measured on an H200 (BENCHMARKS.md), 1 is faster in still views (1080p clear 0.027
-// against 0.032 ms, cirrus 0.032 against 0.039) and at 4K at 250 m/s within 5% either way (cirrus
-// 0.202 against 0.193 ms, clear 0.091 against 0.111); on lavapipe at 640x360 1 is faster too (cirrus
-// 7.4 against 8.7 ms).
+// neighbourhood). 1 is faster in still views and about as fast in motion, on GPUs and on lavapipe
+// (BENCHMARKS.md).
 #define RECONSTRUCT_QUAD_PX 1
 
 // Noise texture sizes (docs/model.md: Perlin-Worley 128^3 RGBA8, Worley 32^3, 2D curl noise).
@@ -31,8 +29,8 @@
 #define WEATHER_WINDOW_SIZE 256
 
 // How the shaders see the per-frame and atmosphere parameter blocks: uniform buffers (NVIDIA reads them
-// through its constant cache: the 1080p march is 22% faster than with storage buffers, measured on an
-// H200, BENCHMARKS.md), or std140 readonly storage buffers in the `.storage.spv` variant that CMake
+// through its constant cache: the march is faster than with storage buffers, BENCHMARKS.md),
+// or std140 readonly storage buffers in the `.storage.spv` variant that CMake
 // builds of every shader with SKY_PARAMS_IN_STORAGE_BUFFERS (lavapipe, Mesa 22.3, leaks ~0.5 MB per
 // frame with uniform buffers bound through push descriptors; skyservice/vk/context.h picks).
 #ifdef SKY_PARAMS_IN_STORAGE_BUFFERS

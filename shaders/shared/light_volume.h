@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The light volume (issue 5): optical depth toward the key light, precomputed each frame around the eye,
+// The light volume: optical depth toward the key light, precomputed each frame around the eye,
 // so that a lit view sample near the eye reads one texel instead of marching the far part of its light
 // cone. Shared by the C++ renderer and the shaders.
 //

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Prelude that lets one source be both GLSL and C++ (Bruneton's approach, STYLE §5 and §8).
+// Prelude that lets one source be both GLSL and C++ (Bruneton's approach, docs/style.md §7 and §8).
 //
 // Rules for files in shaders/shared/*.h and shaders/lib/*.glsl (they are compiled as C++ by tests/):
 //  - float literals carry an `f` suffix (1.0f): in C++ `1.0` is a double and glm has no double*vec3.

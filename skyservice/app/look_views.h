@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The look views of issue 22: where pilots look at the built-in clouds (skyservice/sky/builtin_weather.h), to
+// The look views: where pilots look at the built-in clouds (skyservice/sky/builtin_weather.h), to
 // judge their shapes and light at a glance. `skyservice showcase` renders them into the look sheet and four of
 // them next to the reference path tracer (skyservice/app/reference_pairs.h); sky-reference-looks measures them.
 #pragma once

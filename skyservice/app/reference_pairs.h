@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Views next to the reference (issue 22: `./sky run` shows "four of [the look views] next to the reference"):
+// Views next to the reference (`./sky run` shows four of the look views next to the reference path tracer):
 // a view rendered in real time and path-traced (skyservice/render/reference_renderer.h) at a small size, the two
 // side by side on a captioned sheet with each one's median cloud luminance (skyservice/output/cloud_luminance.h).
 // `skyservice showcase` writes OUT/look-reference-pairs.png; sky-reference-looks draws its sheet with it too.

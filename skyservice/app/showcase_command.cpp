@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // `skyservice showcase` (what `./sky run` runs): the views that show what the product does, rendered
 // from the built-in weather and, when the real GFS sample is beside the project (../shared/weather/),
-// from that forecast at places chosen from its data (issue 4), plus a captioned contact sheet, the look sheet
-// (issue 22) and four look views next to the reference path tracer.
+// from that forecast at places chosen from its data, plus a captioned contact sheet, the look sheet
+// (skyservice/app/look_views.h) and four look views next to the reference path tracer.
 #include "skyservice/app/commands.h"
 
 #include "skyservice/app/look_views.h"
@@ -47,7 +47,7 @@ struct ShowcaseView
     const WeatherSnapshot* weather = nullptr; ///< nullptr: the built-in weather at the view's time
     std::string weatherSource = "builtin";
     uint32_t shadowMapSize = 0;              ///< > 0: also write the cloud shadow map (texels per side)
-    bool look = false;  ///< a look-sheet view (issue 22): half size, on look-sheet.png instead of the contact sheet
+    bool look = false;  ///< a look-sheet view (look_views.h): half size, on look-sheet.png instead of the contact sheet
 };
 
 ShowcaseView builtinView(const char* name, const char* caption, const EyePose& pose, double fovYDeg,
@@ -356,7 +356,7 @@ int runShowcaseCommand(const ShowcaseOptions& options)
     };
     writeSheet("contact-sheet.png", tiles, captions, 2);
     writeSheet("look-sheet.png", lookTiles, lookCaptions, 3);
-    // Four look views next to the reference path tracer (issue 22), small: the path tracing is most of the
+    // Four look views next to the reference path tracer (reference_pairs.h), small: the path tracing is most of the
     // cost (docs/programs.md gives its time on a 2-core CPU).
     if (code == kExitOk && options.referenceSpp > 0)
     {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// sky-bench: GPU time per pass and wall time per frame of the benchmark scenes (issue 5).
+// sky-bench: GPU time per pass and wall time per frame of the benchmark scenes (BENCHMARKS.md).
 //
 //   sky-bench --scene all --width 1920 --height 1080 --frames 100 --warmup 10 --json bench.json
 //
@@ -10,9 +10,9 @@
 //
 // --gpu-frames K runs the renderer's accumulation loop: one CPU setup, then K GPU frames back to back
 // (each with new jitter), and a sample is their mean GPU time. It exists because renderView prepares
-// every frame on the CPU (~25 ms on the H100 machine): with one GPU frame per call the GPU idles most of
-// the time and its clock governor drops the SM clock as low as 345 MHz, which inflates GPU timestamps
-// by up to 5x. Back-to-back frames keep the clock up, as a real-time loop would. Exit codes: 0 ok, 1 runtime failure (Vulkan, files, validation
+// every frame on the CPU: with one GPU frame per call the GPU idles most of
+// the time and its clock governor drops the SM clock, which inflates GPU timestamps
+// several times over. Back-to-back frames keep the clock up, as a real-time loop would. Exit codes: 0 ok, 1 runtime failure (Vulkan, files, validation
 // messages), 2 bad command line.
 //
 // --mode reprojected times the temporal reprojection loop (skyservice/render/reprojection.h): each call

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The scenes that sky-bench times (issue 5): each is a weather snapshot, one view and a UTC time.
+// The scenes that sky-bench times: each is a weather snapshot, one view and a UTC time.
 //
 // Most scenes are places in the built-in weather (skyservice/sky/builtin_weather.h) so that the
 // distant horizon holds the same mixture of cloud the product shows. Two need a sky the built-in
@@ -28,7 +28,7 @@ struct BenchScene
 };
 
 /**
- * The eight scenes of issue 5, in a fixed order: clear, scattered-cumulus, stratocumulus-deck,
+ * The eight benchmark scenes, in a fixed order: clear, scattered-cumulus, stratocumulus-deck,
  * cumulonimbus, cirrus-only, inside-cloud, above-deck-FL350, sunset.
  *
  * @return the scenes (poses are valid; times parse with parseIso8601Utc).

@@ -1,7 +1,7 @@
 #!/bin/bash
-# A/B of two sky-bench builds in one device call, as the sixth session ran it (BENCHMARKS.md): two rounds
+# A/B of two sky-bench builds in one device call (BENCHMARKS.md): two rounds
 # of every scene at 1920x1080 reprojected, full mode at 1920x1080, 3840x2160 reprojected, 1920x1080 at
-# 250 m/s, then each scene of SKY_BENCH_ALONE timed on its own (the H200 clocks down in long runs:
+# 250 m/s, then each scene of SKY_BENCH_ALONE timed on its own (a GPU may clock down in long runs:
 # summarize.py clocks names the affected runs). Each run writes under /tmp/r, all of it returns as
 # $OUT/r.tgz with the printed tables in $OUT/summary.txt (the device tool returns few files).
 # Usage on the device: bash skyservice/bench/device_ab_rounds.sh LABEL_A LABEL_B, with

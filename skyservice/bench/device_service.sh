@@ -1,5 +1,5 @@
 #!/bin/bash
-# sky-service-bench on the GPU machine (issue 20; skyservice/bench/README-service.md). Two steps:
+# sky-service-bench on the GPU machine (skyservice/bench/README-service.md). Two steps:
 #   here, on the dev machine, from the repo root (needs a configured build folder, default build-bench):
 #     bash skyservice/bench/device_service.sh prepare [BUILD]
 #   there, through the device tool with carry [".gl", ".gpu"], from the repo root:

@@ -1,7 +1,7 @@
 #!/bin/bash
 # sky-bench option sets A/B on the GPU machine, each scene in its own run and the option sets taking
-# turns within each scene (the eighth session's calls, BENCHMARKS.md). The H200 idles its clock down in
-# long runs of short frames; runs this short kept it at its full clock.
+# turns within each scene (BENCHMARKS.md). A GPU may idle its clock down in
+# long runs of short frames; runs this short keep it at its full clock.
 # Usage on the device (carry [".gl", ".gpu"], after device_prepare.sh):
 #   VARIANTS=" ;--cone-tail-reuse 0" bash skyservice/bench/device_variants.sh
 # VARIANTS: option sets separated by ';' (a blank one: the defaults). SCENES (default: all eight),

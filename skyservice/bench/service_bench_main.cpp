@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// sky-service-bench: what an image generator gets from the sky service (issue 20), measured in the client.
+// sky-service-bench: what an image generator gets from the sky service, measured in the client.
 //
 //   sky-service-bench --scene all --size 1920x1080 --frames 300 --transport both --json service.json
 //

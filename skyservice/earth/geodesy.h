@@ -3,7 +3,7 @@
 // that the shaders use in place of the ellipsoid near the eye (docs/datums.md).
 //
 // Everything here is double and goes through GeographicLib (Geocentric, LocalCartesian); WGS84
-// constants come only from GeographicLib::Constants (STYLE §10).
+// constants come only from GeographicLib::Constants (docs/style.md §10).
 //
 // Why an osculating sphere: the shaders intersect rays with layer shells written in a
 // cancellation-free form that needs a sphere. The sphere is centred on the eye's normal and tangent

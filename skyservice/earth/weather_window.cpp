@@ -226,7 +226,7 @@ void resampleRows(const ResampleJob& job, uint32_t firstRow, uint32_t endRow)
     }
 }
 
-// Rows per worker below which threads cost more than they save (a row of 256 texels is ~0.2 ms).
+// Rows per worker below which threads cost more than they save (a row is 256 geodesic problems).
 constexpr uint32_t kMinRowsPerWorker = 16;
 // More workers than this fight the renderer's own threads for little gain.
 constexpr uint32_t kMaxWorkers = 8;

@@ -83,10 +83,10 @@ inline constexpr float kDefaultTropopauseAltitudeM = 11000.0f;
  * @param[in] warpRadiusM radial warp r0 (meters; 0 = uniform texels), see windowWarpM().
  *
  * Each texel centre is projected back to latitude and longitude exactly, with GeographicLib's
- * AzimuthalEquidistant::Reverse on WGS84 (a geodesic direct problem, ~1.3 us). Rows are shared out
+ * AzimuthalEquidistant::Reverse on WGS84 (a geodesic direct problem per texel). Rows are shared out
  * to up to 8 threads (std::thread, joined before returning; the result does not depend on their
- * number). Measured for 256^2 texels of the built-in weather: 85 ms on one core, 17 ms with 8
- * threads (H100 host, 16 cores). Not thread-safe on the same `out`.
+ * number). A whole window takes tens of milliseconds of CPU even so, which is why it is made off the
+ * frame path (window_lattice.h). Not thread-safe on the same `out`.
  **********************************************************************/
 void resampleWeatherWindow(const WeatherSnapshot& snapshot, double centreLatDeg, double centreLonDeg,
                            double halfExtentM, WeatherWindow& out, uint32_t sizeTexels = WEATHER_WINDOW_SIZE,

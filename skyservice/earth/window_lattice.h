@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Where the weather window is centred for a given eye, and where the eye lies on that window.
 //
-// Resampling the 256^2 x 11 window costs 17-85 ms of CPU (weather_window.h), far too much for every
+// Resampling the 256^2 x 11 window costs tens of milliseconds of CPU (weather_window.h), far too much for every
 // frame of a moving eye. So the window is not centred on the eye exactly but on the node of a fixed
 // lattice nearest to it (about 2.2 km between nodes): it is resampled only when the eye crosses into
 // another lattice cell (every ~9 s at 250 m/s), and the renderer prepares the next cell's window

@@ -234,7 +234,7 @@ bool ShmRingWriter::create(const ShmRingConfig& config, std::string& error)
     header_ = static_cast<SkyShmHeader*>(p);
     slotsOffset_ = slotsOffset;
     slotStride_ = layout.stride;
-    // Up to 3 helpers (4 copying threads): the copy's speed stops growing there on the machines measured.
+    // Up to 3 helpers (4 copying threads): beyond that memory bandwidth, not threads, bounds the copy.
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     copier_ = std::make_unique<ParallelCopy>(std::min(3u, cores - 1));
     // ftruncate zero-filled the object: every slot's sequence is 0 (even, never written), no frame yet.

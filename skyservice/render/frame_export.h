@@ -41,7 +41,7 @@
 // the layer (ensureExportedLayers, off the frame path) and kept until destroyFrameExport. exportFrame
 // copies the layers it is told to (the renderer drew them: kRead* or kDraw* in ViewRequest::readback)
 // with vkCmdCopyImage in the same submission as the display frame: same format, exact values.
-// Tested (tests/export): lavapipe (fence path) and an NVIDIA H100 (timeline semaphore path), each with a
+// Tested (tests/export) on both paths: fences (lavapipe) and timeline semaphores (a GPU driver), each with a
 // second process importing through skyclient_vulkan and reading bytes identical to renderView's.
 #pragma once
 

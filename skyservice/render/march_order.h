@@ -16,7 +16,7 @@ struct MarchOrder
 {
     /// MarchOrderBlock (MARCH_ORDER_BUFFER_BYTES), device-local: the march reads the order at the start of
     /// every invocation and adds to the lookups, which in host-visible memory (PCIe on a discrete GPU)
-    /// cost a full 1080p frame of clear sky 0.06 ms on the H200 (BENCHMARKS.md).
+    /// would cross the bus in every invocation, slowing the whole frame (BENCHMARKS.md).
     Buffer buffer;
     Buffer readback;  ///< host-visible copy of the lookups of the last march (MARCH_ORDER_MAX_ROWS words)
     /// Workgroup rows of the frame whose lookups the buffer holds (0: none measured yet). A frame with

@@ -15,7 +15,7 @@ struct RenderTuning
     /// Where no light volume reaches, a lit sample within this distance (m) of the last cone that marched
     /// its far (cheap) samples takes those instead of marching its own; its near, detailed samples stay
     /// its own (0: every cone marched in full). The next lit sample in a cloud is tens of metres away, the
-    /// far samples 300 m-4.4 km. H200, 1080p reprojected: -21..-28 % in the volumetric scenes at 400 m;
+    /// far samples 300 m-4.4 km. Frames of the volumetric scenes are faster at 400 m (BENCHMARKS.md);
     /// the 320x180 contact sheet of the bench scenes 52.5 dB of 0 (the Cb tower 47 dB). BENCHMARKS.md;
     /// tests/gpu/test_cone_tail.cpp.
     double coneTailReuseM = 400.0;
@@ -30,13 +30,13 @@ struct RenderTuning
     double coneTailReuseBeyondM = 15000.0;
     /// Deep lit samples (behind a view transmittance below QualitySettings::detailMinTransmittance) within
     /// this distance (m) of the last cone marched take its light and march none (0: each marches its own).
-    /// What they add reaches the eye through less than a tenth. H200, 1080p: inside-cloud -10 %
-    /// reprojected, -13 % full, the deck -6 % full; the 320x180 contact sheet 59.9 dB of 0 (BENCHMARKS.md).
+    /// What they add reaches the eye through less than a tenth. Faster inside the cloud and in full frames
+    /// of the deck (BENCHMARKS.md); the 320x180 contact sheet 59.9 dB of 0.
     double deepLightReuseM = 400.0;
     /// Beyond this distance (m) a light cone's detailed near samples (QualitySettings::fullConeSamples) are
     /// taken as one sample over their length (0: never): there the detail erosion has faded out
     /// (detailFadeEndM) and a pixel spans tens of metres. One density lookup fewer per far lit sample, and
-    /// the frame's costliest rays are far ones (H200, 1080p reprojected: sunset -10 %, FL350 -7 %). The
+    /// the frame's costliest rays are far ones (the sunset and FL350 scenes gain most: BENCHMARKS.md). The
     /// single sample sees less of a cloud's thin sunlit skin, so the clouds it lights come out brighter
     /// (+1.2 % in the test); a nearer limit changes more of the picture (the 320x180 contact sheet of the
     /// bench scenes against 0: 46.2 dB at 25 km, 51.4 dB at 40 km; FL350's deck 39.3 / 43.9 dB).
@@ -52,7 +52,7 @@ struct RenderTuning
     bool emptySpaceSkipping = true;
     /// The march launches its workgroup rows costliest first, by the lookups the previous frame of the
     /// same shape counted (shaders/shared/march_order.h); false: always the interleaved order (A/B). It
-    /// changes no pixel. H200, 1080p: see BENCHMARKS.md.
+    /// changes no pixel; the frame ends sooner (BENCHMARKS.md).
     bool costOrderedMarch = true;
     /// The march's row counts (RenderResult::marchRowLookups) sum every ray's density lookups instead of
     /// taking the slowest ray of each workgroup: the work of a frame per pixel, for sky-bench's

@@ -28,27 +28,25 @@ struct QualitySettings
     /// every cone sample marched.
     double lightVolumeTexelM = 160.0;
     /// Frames that march fewer rays than this (pixels / march block^2) draw no light volume: its build
-    /// (221 184 texels x 5 density lookups) then costs more than it saves. Measured on lavapipe at
-    /// 640x360 reprojected (14 400 rays) with the eye flying: +0..15 % per frame with the volume; on the
-    /// H200 at 1920x1080 reprojected (130 000 rays): -6..-27 %.
+    /// (221 184 texels x 5 density lookups) then costs more than it saves: a 640x360 reprojected frame
+    /// (14 400 rays) is slower with the volume, a 1920x1080 one (130 000 rays) faster (BENCHMARKS.md).
     uint32_t lightVolumeMinRays = 50000;
     /// View samples behind a view transmittance below this take the base shape without detail erosion
-    /// (0: never): there little of the sample reaches the eye. 0.2 since issue 22's shapes made each
-    /// eroded sample dearer: H200, 1080p reprojected, against 0.1: inside the deck -8 % per frame, the
-    /// deck -3 %, cumulus -1 %, FL350 -2 % (BENCHMARKS.md, eighteenth session); the 320x180 contact sheet
-    /// of the bench scenes 45-55 dB (display) of 0.1's, and the deck from above 41 dB (cloud radiance) of
-    /// the render that erodes every sample (47 dB at 0.1; tests/gpu/test_render.cpp).
+    /// (0: never): there little of the sample reaches the eye. 0.2, not 0.1, because the current cloud
+    /// shapes make each eroded sample dear (faster frames in the deck and cumulus scenes: BENCHMARKS.md);
+    /// the 320x180 contact sheet of the bench scenes 45-55 dB (display) of 0.1's, and the deck from above
+    /// 41 dB (cloud radiance) of the render that erodes every sample (47 dB at 0.1; tests/gpu/test_render.cpp).
     double detailMinTransmittance = 0.2;
-    /// Those deep view samples also step this many times further (1: the same step). H200, 1080p
-    /// reprojected: -11..-17 % per frame at 2; the 320x180 contact sheet of the bench scenes 67 dB of 1.
+    /// Those deep view samples also step this many times further (1: the same step): fewer lookups per
+    /// frame (BENCHMARKS.md); the 320x180 contact sheet of the bench scenes 67 dB of 1.
     double deepStepFactor = 2.0;
     /// A step inside a cloud covers at most this optical depth at the sample's extinction (the sample at
     /// a surface: at full density; while the view transmittance is above 0.5: at least half of it), so
     /// that the sunlit skin, a mean free path deep, gets its samples where the distance-grown step is
     /// longer (0: no limit). Against 5x finer steps (tests/gpu/test_render.cpp
     /// CloudStepsConvergeOnFinerSteps): 36.0 / 42.2 dB. With no limit the sunlit side of a cumulus is 15 %
-    /// too dark (test SunSideOfACumulusIsBrighterThanItsShadowSide fails) and frames were 1.5-3x cheaper
-    /// (H200, 1080p reprojected, measured against the limit with a floor everywhere: BENCHMARKS.md).
+    /// too dark (test SunSideOfACumulusIsBrighterThanItsShadowSide fails), though frames are cheaper
+    /// (BENCHMARKS.md).
     double maxStepOpticalDepth = 1.0;
     uint32_t octaves = 3;            ///< multiple-scattering octaves (Wrenninge 2013)
     double extinctionPerM = 0.045;   ///< cloud extinction at density 1 (1/m); ~20 m mean free path
@@ -78,7 +76,7 @@ struct QualitySettings
     /// render). In a broken or scattered layer it is always 1. In fog a pixel's radiance comes from the
     /// first ~100 m of cloud, which moves little per frame: turning at 60 deg/s at 250 m/s inside an
     /// overcast deck (tests/gpu/test_flight_path.cpp) block 2 keeps the display image 50+ dB of the
-    /// full render. H200, 1080p: inside-cloud 0.748 -> 0.277 ms (BENCHMARKS.md).
+    /// full render, and the inside-cloud frame costs a fraction of block 1's (BENCHMARKS.md).
     uint32_t insideCloudBlockPx = 2;
     bool highCloud = true;               ///< cirrus layer on
     uint32_t accumulationFrames = 1;     ///< frames averaged, each with new march jitter and sub-pixel offset

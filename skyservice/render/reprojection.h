@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Temporal reprojection of the cloud image (docs/model.md, issue 5): the CPU side.
+// Temporal reprojection of the cloud image (docs/model.md): the CPU side.
 //
 // Each reprojected frame marches one pixel of every 4x4 block, at the block position that
 // reprojectionPhase(frameIndex) names (a Bayer order: 16 consecutive frames cover all 16 positions).

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // A new weather prepared off the frame path: the staged weather.
 //
-// setWeather makes the next frame resample the whole window on the frame path (17-85 ms). A staged
+// setWeather makes the next frame resample the whole window on the frame path (tens of milliseconds of CPU). A staged
 // weather instead gets its snapshot made (e.g. a timeline sampled), validated and its window resampled
 // for the eye's lattice node on the weather worker (weather_worker.h), while frames go on drawing the old
 // weather; the first frame after the job finished swaps it in and drops the reprojection history, as

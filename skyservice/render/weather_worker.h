@@ -3,7 +3,7 @@
 // (weather_stage.h, window_provider.h) while frames go on.
 //
 // One thread, started with the renderer, instead of a thread per job: the steady frame path starts no
-// threads, and the weather's CPU work (17-85 ms per window) never takes more than one core from the
+// threads, and the weather's CPU work (tens of milliseconds per window) never takes more than one core from the
 // frames. Jobs run one at a time in the order of their priority, then of submission: a staged weather
 // (something the user asked for) goes before a prefetched window (a guess about where the eye goes).
 // A job is never abandoned once started; the destructor runs the jobs still queued, then joins.

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-// The weather windows a moving eye needs, prepared off the frame path (issue 5).
+// The weather windows a moving eye needs, prepared off the frame path so that no frame waits for one.
 //
 // A window is centred on a lattice node (earth/window_lattice.h), so a moving eye needs a new one only
 // when it crosses into another lattice cell. The renderer asks for the window of the eye's node every
 // frame (takeWindow) and names the node the eye is heading for (prefetchWindow): that one is resampled,
 // its anvils derived and summarised on the weather worker (weather_worker.h) while frames go on. When the eye arrives, the
-// window is ready (it takes 17-85 ms to make, the eye needs ~9 s to cross a cell at 250 m/s); if it is
+// window is ready (it takes tens of milliseconds to make, the eye needs ~9 s to cross a cell at 250 m/s); if it is
 // not, takeWindow waits for it, so the window used never depends on timing.
 #pragma once
 
@@ -25,9 +25,10 @@ namespace sky
 
 /// How far ahead along its horizontal motion the eye looks for the next lattice node: the next window
 /// starts being made when the eye is this close to its cell's edge. At least kWindowLookAheadMinM (5 s
-/// at 300 m/s, for a job of 17-85 ms), and kWindowLookAheadS of motion at the eye's speed: at 3000 m/s
-/// with 4 ms frames a fixed 1500 m (0.5 s) left a frame waiting 214 ms for its window (the job shares
-/// the CPU with the frames). At most kWindowLookAheadMaxM: 1 s at Mach 60, 9 lattice cells, well inside
+/// at 300 m/s, for a job of tens of milliseconds), and kWindowLookAheadS of motion at the eye's speed: at
+/// 3000 m/s a fixed 1500 m is only 0.5 s, too little for a job that shares the CPU with frames rendered
+/// back to back, and a frame would wait for its window.
+/// At most kWindowLookAheadMaxM: 1 s at Mach 60, 9 lattice cells, well inside
 /// the window's ~1 km texels (warp radius 150 km); a faster "speed" is a jump, not a flight.
 inline constexpr double kWindowLookAheadMinM = 1500.0;
 inline constexpr double kWindowLookAheadS = 1.5;

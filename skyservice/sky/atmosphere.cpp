@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstddef>
 
-// Layout checks for the structs shared with GLSL (STYLE §5): std140/std430 match the C++ layout only
+// Layout checks for the structs shared with GLSL (docs/style.md §7): std140/std430 match the C++ layout only
 // while every member is a 16-byte vector.
 static_assert(sizeof(AtmosphereParams) == 9 * 16, "AtmosphereParams must stay 9 vec4");
 static_assert(offsetof(AtmosphereParams, radii) == 5 * 16, "AtmosphereParams.radii moved");

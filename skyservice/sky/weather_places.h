@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Places in a weather snapshot where the weather is of a given kind: a low deck, a convective area,
-// clear sky. The GPU tests (issue 4, test 3) and the showcase pick their views from real model data
+// clear sky. The real-data GPU tests and the showcase pick their views from real model data
 // with it, so that nobody hard-codes coordinates that only fit one file.
 //
 // Layers are read by their snapshot index as sky-ingest writes them (weather_ingest/README.md

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The two error tiers of STYLE §4, never compiled out.
+// The two error tiers of docs/style.md §5, never compiled out.
 //  VK_CHECK(call): the call can fail only through programmer error -> log file:line, expression and
 //                  VkResult name, then abort (in every build).
 //  VK_TRY(call):   the call can fail at run time (allocation, device lost) -> return a SkyStatus

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Compute programs: SPIR-V loading, reflection, pipelines and dispatch() (STYLE §6).
+// Compute programs: SPIR-V loading, reflection, pipelines and dispatch() (docs/style.md §9).
 // The shader defines the interface: descriptor types, push-constant size and local size are reflected
 // from the SPIR-V, and dispatch() checks every call against them. Descriptors are pushed
 // (VK_KHR_push_descriptor), so no pools or sets are managed anywhere.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Buffers and images: plain structs plus create/destroy functions (STYLE §2). A handful of large
+// Buffers and images: plain structs plus create/destroy functions (docs/style.md §6). A handful of large
 // allocations, so plain vkAllocateMemory with one memory-type chooser; every allocation is tracked by
 // name and size in a MemoryTracker so that totals can be reported and leaks detected at shutdown.
 #pragma once

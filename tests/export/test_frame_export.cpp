@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Zero-copy frame export (issue 6, skyservice/ipc/PROTOCOL.md) on the available Vulkan device
+// Zero-copy frame export (skyservice/ipc/PROTOCOL.md) on the available Vulkan device
 // (lavapipe in CI), validation on in both processes: two rendered frames with shadow maps are exported,
 // their fds cross a real socketpair as SCM_RIGHTS into a forked and exec'd child, which imports them with
 // skyclient_vulkan into its own VkInstance/VkDevice and reads them back: the bytes must equal the

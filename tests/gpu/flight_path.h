@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// A scripted flight for the reprojection gates (issue 5): the eye moves in 60 Hz frame steps, every
+// A scripted flight for the reprojection gates: the eye moves in 60 Hz frame steps, every
 // frame is rendered reprojected and, once the history is warm, compared with a full-resolution render
 // of the same pose.
 #pragma once

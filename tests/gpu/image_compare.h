@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Image comparisons of the reprojection tests (issue 5): PSNR of the cloud image and of the display
+// Image comparisons of the reprojection tests: PSNR of the cloud image and of the display
 // image, over the whole frame or a band of columns, and one full render resampled into another view.
 //
 // Cloud-image PSNR is over the four channels of RenderResult::cloudRgbaHalf (premultiplied linear

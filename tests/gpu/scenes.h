@@ -61,7 +61,7 @@ std::vector<SkyProbe> cpuSkyProbes(Renderer& r, const ViewRequest& view, int cou
 namespace sky::testscenes
 {
 
-// --- Geo-referencing (issue 4, tests/gpu/test_georef.cpp) ---
+// --- Geo-referencing (tests/gpu/test_georef.cpp) ---
 
 /// Unit view direction (ENU) through a point of the image given in pixels (x right, y down; pixel
 /// (i, j) covers [i, i+1) x [j, j+1)): the mapping of shaders/clouds/view_ray.glsl without jitter.
@@ -96,7 +96,7 @@ WeatherSnapshot highLayer(float coverage, CloudType type, float altitudeM);
 namespace sky::testscenes
 {
 
-// --- Temporal reprojection (issue 5, tests/gpu/test_reprojection.cpp and its siblings) ---
+// --- Temporal reprojection (tests/gpu/test_reprojection.cpp and its siblings) ---
 
 /// testQuality() with reprojection on.
 QualitySettings reprojectedQuality();

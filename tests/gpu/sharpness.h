@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Sharpness of a display image (issue 22: "under a 60 deg/s turn the display keeps its detail; compare
-// sharpness, not only PSNR"): PSNR forgives a uniformly blurred frame that keeps the mean right, while the
+// Sharpness of a display image (the requirement: under a 60 deg/s turn the display keeps its detail; compare
+// sharpness, not only PSNR): PSNR forgives a uniformly blurred frame that keeps the mean right, while the
 // eye sees lost detail at once. The measure is the mean absolute difference of the display luma between
 // horizontal and vertical neighbours, optionally over a band of columns: blur lowers it, grain raises it.
 #pragma once

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Multi-channel displays (issue 5): two channels with adjacent frusta (headings 0 and 40 degrees, 40
+// Multi-channel displays: two channels with adjacent frusta (headings 0 and 40 degrees, 40
 // degrees of horizontal field of view each, same eye, same time) agree at their shared edge with
 // reprojection on, and the same inputs give the same bytes on another renderer (another machine).
 //

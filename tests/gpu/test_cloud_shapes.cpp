@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Cloud shape tests (issue 22, "Shapes that match the sky") on the available Vulkan device (lavapipe in
+// Cloud shape tests (docs/model.md "Clouds": shapes that match the sky) on the available Vulkan device (lavapipe in
 // CI), validation on, small images:
 // - no cloud below the layer base: from under every base, looking down, alpha is zero on every pixel,
 //   also where layers of very different bases meet clear cells (their interpolation in the weather

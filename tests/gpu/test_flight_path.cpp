@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Scripted flight-path gates of temporal reprojection (issue 5 "Quality gates"), on lavapipe with
+// Scripted flight-path gates of temporal reprojection (docs/tests.md "Temporal reprojection"), on lavapipe with
 // validation on, 128x72, test quality, 60 Hz frame steps over a stratocumulus deck (coverage 0.7,
 // 1500-2100 m): cruise at 280 m/s, a 60 deg/s turn and a 90 deg/s turn at 250 m/s, a climb through
 // the deck (march block 4 -> 2 -> 1 -> 2 -> 4, reprojection.h); and a 60 deg/s turn inside an overcast
@@ -45,7 +45,7 @@ ViewRequest aboveDeck()
     return v;
 }
 
-// Gates of every flight segment: the display frame >= 30 dB (issue 5); the cloud image >= 18 dB
+// Gates of every flight segment: the display frame >= 30 dB (the quality gate); the cloud image >= 18 dB
 // (measured 19.8-22.7 dB in cruise and turns; the reference against itself one frame earlier is
 // 21.5-23.4 dB in the turns); the edge bands >= 16 dB (cloud image; measured >= 18.9 dB). In a turn the
 // band the view turns toward has no history or the oldest: there it must also be at most 5 dB below

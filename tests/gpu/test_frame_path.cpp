@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The frame path (issue 20): compositing layers, frames in flight, and a readback of only what was asked.
+// The frame path: compositing layers, frames in flight, and a readback of only what was asked.
 #include "gpu_fixture.h"
 #include "scenes.h"
 

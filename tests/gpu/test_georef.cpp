@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Geo-referencing accuracy (issue 4): clouds appear where the snapshot's latitude, longitude and
+// Geo-referencing accuracy: clouds appear where the snapshot's latitude, longitude and
 // altitude put them, anywhere on the globe; the real GFS sample renders its decks and its clear sky.
 // GPU tests on the available Vulkan device (lavapipe in CI), validation on, small images.
 #include "skyservice/output/image_files.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Geo-referencing on every grid type (issue 23): a cloud cell written at a known latitude/longitude on a
+// Geo-referencing on every grid type ecCodes can locate: a cloud cell written at a known latitude/longitude on a
 // Lambert, polar stereographic, Mercator, rotated, reduced Gaussian or reduced lat/lon grid (ecCodes, at
 // test time), converted by sky_ingest and rendered, is seen from 50 km within 1 degree of the direction
 // GeographicLib gives. GPU test on the available Vulkan device (lavapipe in CI), validation on, 160 x 90.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Device memory (issue 5: "device memory at 1920x1080 <= 64 MB, all textures and buffers included", in
+// Device memory (the budget: device memory at 1920x1080 <= 64 MB, all textures and buffers included, in
 // full-resolution and reprojected frames), counted by the renderer's MemoryTracker on lavapipe with
 // validation on: the linear frame exists only while frames ask for it, the reprojection's fresh images
 // follow the march block back down when the eye leaves a cloud (keeping the history), and a 1080p frame
@@ -18,7 +18,7 @@ using namespace sky::testscenes;
 namespace
 {
 
-constexpr uint64_t kBudgetBytes = 64000000;  // issue 5: 64 MB
+constexpr uint64_t kBudgetBytes = 64000000;  // the device-memory budget at 1080p: 64 MB
 
 class Memory : public GpuFixture
 {

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
-// The real-time lighting against the reference path tracer on the look views of issue 22 (built-in cumulus,
+// The real-time lighting against the reference path tracer on the look views (look_views.h; built-in cumulus,
 // base 1200 m, 44.3 N 7.5 E, midsummer noon): from below at 500 m looking up 10 deg, and from above at
 // 4000 m looking down 15 deg. The reference is rendered here at a small size and few samples per pixel;
 // the statistics are means (tests/gpu/look_stats.h), which few samples leave unbiased where the median of a
 // path-traced image creeps up with the samples. Unbiased is not enough under the bases: there most paths carry
 // almost nothing and a few carry much, so a sum of few samples mostly falls short. The reference's underside/
-// top ratio of means from below was 0.281 at 8 samples, 0.316 at 16, 0.376 at 32 and 0.407 at 64 (H200); the
-// view from below takes 32 (~25 s on lavapipe). sky-reference-looks prints the medians at more samples.
+// top ratio of means from below was 0.281 at 8 samples, 0.316 at 16, 0.376 at 32 and 0.407 at 64; the
+// view from below takes 32 (a lavapipe test's limit). sky-reference-looks prints the medians at more samples.
 #include "skyservice/app/look_views.h"
 #include "skyservice/render/reference_renderer.h"
 #include "skyservice/sky/builtin_weather.h"

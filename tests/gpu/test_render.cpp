@@ -170,7 +170,7 @@ TEST_F(GpuRender, SunSideOfACumulusIsBrighterThanItsShadowSide)
 
 // Deep in a cloud (view transmittance below QualitySettings::detailMinTransmittance, 0.2) the view
 // samples skip the detail erosion: a deck seen from above stays within 38 dB of the render that erodes
-// every sample (measured 39.2 dB; 47.5 at 0.1, the default before issue 22's shapes made eroded samples
+// every sample (measured 39.2 dB; 47.5 at 0.1, the default before the current cloud shapes made eroded samples
 // dearer: render_types.h), and differs from it (the rule is in use).
 TEST_F(GpuRender, DeepSamplesWithoutDetailChangeLittle)
 {

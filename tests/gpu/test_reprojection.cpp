@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Temporal reprojection (issue 5, reprojection.*): the Bayer phase order and the history limits on the
+// Temporal reprojection (reprojection.*): the Bayer phase order and the history limits on the
 // CPU (and the march block near clouds), and on the GPU (lavapipe, validation on, 128x72, test quality):
 // a still view converges to the full-resolution image, a teleport, an explicit drop, a weather swap or a
 // time jump leaves no pixel of the old view, and a slow pan stays close to full-resolution renders.

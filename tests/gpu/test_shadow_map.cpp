@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Cloud shadow map tests (issue 4, "Accuracy that a test proves" (2)) on the available Vulkan device
+// Cloud shadow map tests (docs/tests.md "What the suite checks") on the available Vulkan device
 // (lavapipe in CI), validation on: clear sky is fully lit, an overcast deck is dark everywhere, a cirrus
 // veil dims the light partly, an isolated cell's shadow lies where its lat/lon shifted by the sun
 // direction times its height says (two sun elevations), and the metadata's corners are GeographicLib's.
@@ -257,7 +257,7 @@ TEST_F(ShadowMap, AgreesWithTheViewTowardTheSun)
     // A ray that grazes a cloud edge can be lit in one march and shadowed in the other (their samples
     // fall differently; seen: 0.59, 0.65, 0.71). The two must agree on lit/dark elsewhere and on average
     // over the other rays: that one ray alone moves the mean of 8 by up to 0.09 (with the march jitter
-    // in world space, issue 5, the mean of all 8 is 0.128 and 0.045 without the largest; with it per
+    // in world space, the mean of all 8 is 0.128 and 0.045 without the largest; with it per
     // pixel it was 0.098 and 0.028).
     EXPECT_GE(agree, n - 1);
     EXPECT_LT((sumDiff - maxDiff) / (n - 1), 0.12);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// World-space march jitter (issue 5, shaders/lib/world_jitter.glsl): the start offset of a view ray
+// World-space march jitter (shaders/lib/world_jitter.glsl): the start offset of a view ray
 // is a function of its earth-fixed direction, not of its screen pixel.
 //
 // The texel function itself is tested on the CPU in tests/unit/test_cloud_math.cpp. Here, on the GPU

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Every bad input of issue 3 gets a typed error with a clear message (and, through the CLI, a non-zero
+// Every bad input (weather_ingest/README.md) gets a typed error with a clear message (and, through the CLI, a non-zero
 // exit and no output file: tests/ingest/cli_test.sh).
 #include "weather_ingest/grib_fields.h"
 #include "weather_ingest/ingest.h"
@@ -236,7 +236,7 @@ namespace sky
 namespace
 {
 
-// Before issue 24 a few kB of GRIB2 holding constant fields on a large grid converted into a snapshot
+// Regression: a few kB of GRIB2 holding constant fields on a large grid converted into a snapshot
 // hundreds of times its size (a 179-byte file: 300 MB). Decoded fields and output are now each held to
 // max(floor, ratio x input bytes), with --allow-large-output (MappingOptions::allowLargeOutput) to pass.
 TEST(BadInput, AmplifyingInputIsRefusedUnlessAllowed)

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Every grid type ecCodes can locate (issue 23): fixtures written from Debian's ecCodes samples at test
+// Every grid type ecCodes can locate: fixtures written from Debian's ecCodes samples at test
 // time, a cloud disc at a known latitude/longitude found at that place in the snapshot; regional data
 // blending into the grid under it without a step; bad grids named in the error.
 #include "weather_ingest/grib_fixture.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Hostile snapshot files (issue 24): a valid header and metadata declaring arrays far larger than the
+// Hostile snapshot files: a valid header and metadata declaring arrays far larger than the
 // bytes stored. The reader must refuse them with a message, never throw, and never allocate by the
 // declared size.
 #include "weather_ingest/crc32c.h"
@@ -67,7 +67,7 @@ long peakRssKb()
     return u.ru_maxrss;
 }
 
-// Before issue 24 the reader resized the level field to the declared 64 G floats (256 GB) because the
+// Regression: the reader resized the level field to the declared 64 G floats (256 GB) because the
 // sparse file is that long: std::bad_alloc escaped (and killed the daemon's loader thread).
 TEST(SnapshotHostile, HugeDeclaredLevelFieldInASparseFileIsRefusedWithoutThrowing)
 {
@@ -88,7 +88,7 @@ TEST(SnapshotHostile, HugeDeclaredLevelFieldInASparseFileIsRefusedWithoutThrowin
 }
 
 // A 256 MB array in a sparse file with a wrong payload checksum: refused before its array is read, so
-// the reader's memory never grows by the declared size (before issue 24 it read all of it first).
+// the reader's memory never grows by the declared size (it once read all of it first).
 TEST(SnapshotHostile, SparseOrCorruptFileNeverGrowsMemoryByTheDeclaredSize)
 {
     const std::string path = test::tempPath("sparse.skywx");
@@ -105,7 +105,7 @@ TEST(SnapshotHostile, SparseOrCorruptFileNeverGrowsMemoryByTheDeclaredSize)
     std::remove(path.c_str());
 }
 
-// Before issue 24 a FIFO made the reader block in open() until a writer came (the daemon's weather
+// Regression: a FIFO made the reader block in open() until a writer came (the daemon's weather
 // loader wedged for good). It is refused at once now, as are symbolic links and devices. (If the
 // reader ever blocks again, the test unblocks it by opening the FIFO itself and fails.)
 TEST(SnapshotHostile, FifosLinksAndDevicesAreRefusedAtOnce)

@@ -352,7 +352,7 @@ size_t openFdCount()
     return n;
 }
 
-// Before issue 24 only the bytes of a client's queued replies were bounded: a client that asked for
+// Regression: only the bytes of a client's queued replies were bounded: a client that asked for
 // replies carrying descriptors and never read them made the server hold every one (the daemon reached
 // 3 610 descriptors), and thousands of tiny replies were queued one entry each. Both now disconnect it.
 TEST(ControlSocket, QueuedRepliesAreBoundedInCountAndDescriptors)
@@ -380,7 +380,7 @@ TEST(ControlSocket, QueuedRepliesAreBoundedInCountAndDescriptors)
     ASSERT_TRUE(waitFor([&] { return s.disconnected.load() == 2; })) << "20000 tiny unread replies were all queued";
 }
 
-// Before issue 24, with the process out of descriptors (EMFILE) a pending connection kept the
+// Regression: with the process out of descriptors (EMFILE) a pending connection kept the
 // listening socket readable and the poll loop spun at full speed. It backs off now, and serves the
 // connection once descriptors are free again.
 TEST(ControlSocket, OutOfDescriptorsOnAcceptBacksOffAndRecovers)
@@ -423,7 +423,7 @@ namespace sky
 namespace
 {
 
-// Before issue 24 connections that never said hello held their slot for ever: 64 of them locked every
+// Regression: connections that never said hello held their slot for ever: 64 of them locked every
 // other client out. Now a connection must say hello within helloTimeoutMs and, until it has, may not
 // stay silent for idleWithoutHelloMs; a client that said hello stays as long as it likes.
 // (Before the fix neither was closed: the test saw no timeout line.)

@@ -274,7 +274,7 @@ namespace sky
 namespace
 {
 
-// Before issue 24 an embedded NUL ("\u0000") was kept in the parsed string and silently cut by every C
+// Regression: an embedded NUL ("\u0000") was kept in the parsed string and silently cut by every C
 // API after it (open, the log): "/srv/a.skywx\u0000ignored" loaded /srv/a.skywx. It is refused now.
 TEST(Protocol, NulInStringsIsRefused)
 {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// A ring whose header or slot fields were scribbled over (issue 24): whoever may read the ring may be
+// A ring whose header or slot fields were scribbled over: whoever may read the ring may be
 // able to write it (socket_mode 0o666). The reader never addresses or sizes a read outside the mapping.
 #include "skyservice/ipc/shm_ring.h"
 #include "tests/ipc/ipc_test_util.h"
@@ -47,7 +47,7 @@ struct Scribbler
     }
 };
 
-// Before issue 24 a slot's width/height/row_bytes and shadow size were handed to the client unchecked
+// Regression: a slot's width/height/row_bytes and shadow size were handed to the client unchecked
 // (the shm example read past the mapping), and the reader recomputed slot addresses from the header's
 // slots_offset/slot_stride at every acquire (scribbling them crashed it).
 TEST(ShmRing, ScribbledSlotAndHeaderFieldsNeverLeadOutsideTheMapping)

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// End-to-end (issue 21): a test host drives the real daemon over CIGI 3.3 on UDP. The ownship, the time and
+// End-to-end: a test host drives the real daemon over CIGI 3.3 on UDP. The ownship, the time and
 // one global Stratus layer (base 1000 m, 600 m thick, 100 %) reach the frames: from 3000 m the deck lies
 // below the horizon, from 500 m the sky is overcast; a Start of Frame comes back for every frame;
 // Environmental Conditions Requests are answered from the same weather; a host of either byte order is

@@ -98,7 +98,7 @@ TEST(ServiceConfig, CigiSection)
     EXPECT_TRUE(applyConfigFile(path, q, error)) << error;
 }
 
-// Before issue 24 an empty file or a folder read as "no settings": on SIGHUP every field silently
+// Regression: an empty file or a folder read as "no settings": on SIGHUP every field silently
 // went back to its default (render rate, quality, watched folder). They are refused like bad values.
 TEST(ServiceConfig, EmptyFileFolderAndCommentOnlyFileAreRefused)
 {

@@ -125,7 +125,7 @@ TEST(ServiceFrames, MatchesOneShotRender)
     EXPECT_EQ(d.stop(), 0);
 }
 
-// The compositing layers a subscriber asks for (issue 20) are those of the one-shot render of the same
+// The compositing layers a subscriber asks for are those of the one-shot render of the same
 // view: the clouds layer's alpha is the EXR's A (1 - transmittance) and the depth layer's G its Z, its R
 // (the cloud's front) the EXR's ZFront, bit for bit, never beyond G and > 0 wherever G is;
 // the sky layer is the sky alone (where no cloud is, the display is the sky layer tone-mapped, so it is

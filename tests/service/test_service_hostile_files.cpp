@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// End-to-end (issue 24): hostile weather files and configs. The daemon keeps serving, says what was
+// End-to-end: hostile weather files and configs. The daemon keeps serving, says what was
 // wrong, and never wedges its weather loader.
 #include "tests/service/service_harness.h"
 
@@ -64,7 +64,7 @@ bool writeHugeSparseSnapshot(const std::string& path)
 
 }  // namespace
 
-// Before issue 24 the loader thread allocated the declared 256 GB, std::bad_alloc escaped it and the
+// Regression: the loader thread allocated the declared 256 GB, std::bad_alloc escaped it and the
 // daemon aborted (rc 134). Now the file is refused, named in status, and the daemon keeps serving.
 TEST(ServiceHostile, HugeDeclaredSnapshotIsRefusedAndTheDaemonLives)
 {
@@ -86,7 +86,7 @@ TEST(ServiceHostile, HugeDeclaredSnapshotIsRefusedAndTheDaemonLives)
     EXPECT_EQ(d.stop(), 0) << readFile(d.logPath);
 }
 
-// Before issue 24 load_weather of a FIFO blocked the loader thread in open() for good: every later
+// Regression: load_weather of a FIFO blocked the loader thread in open() for good: every later
 // load was dropped, and SIGTERM hung. A FIFO renamed into the watched folder did the same. Both are
 // refused at once now (the watcher does not even queue it), and a good file loads right after.
 TEST(ServiceHostile, FifoNeverWedgesTheWeatherLoader)
@@ -115,7 +115,7 @@ TEST(ServiceHostile, FifoNeverWedgesTheWeatherLoader)
     EXPECT_EQ(d.stop(), 0) << readFile(d.logPath);
 }
 
-// Before issue 24 a client could queue any number of write_files (the render thread takes jobs before
+// Regression: a client could queue any number of write_files (the render thread takes jobs before
 // frames: 200 stalled rendering for 1.7 s) and any number of files subscriptions (each one costs every
 // frame). Now a client has at most 8 jobs queued and 4 files subscriptions (the same dir again replaces
 // its subscription); the rest are answered busy, and SIGTERM with jobs queued still exits cleanly.
@@ -166,7 +166,7 @@ TEST(ServiceHostile, PerClientWorkIsBounded)
     EXPECT_EQ(d.stop(), 0) << readFile(d.logPath);
 }
 
-// Before issue 24 write_files wrote wherever the prefix pointed (absolute, "..", through links) and
+// Regression: write_files wrote wherever the prefix pointed (absolute, "..", through links) and
 // replaced any file the daemon's user could write. Now every name is relative to files_root, resolved
 // beneath it without following links, a file the daemon did not write is never replaced, and each file
 // request is logged with the peer's uid.
@@ -214,7 +214,7 @@ TEST(ServiceHostile, FileOutputStaysBeneathFilesRoot)
         << readFile(d.logPath);
 }
 
-// Before issue 24 the default ring name carried the daemon's pid: a killed daemon's ring (25 MB at
+// Regression: the default ring name carried the daemon's pid: a killed daemon's ring (25 MB at
 // 1080p) stayed in /dev/shm for good, as a restart made a new one. The name now follows the socket, so
 // the restarted daemon finds the stale ring (its writer is gone), replaces it, and removes it on exit.
 TEST(ServiceHostile, KilledDaemonsRingIsReclaimedByTheRestart)
@@ -242,7 +242,7 @@ TEST(ServiceHostile, KilledDaemonsRingIsReclaimedByTheRestart)
     EXPECT_FALSE(std::filesystem::exists("/dev/shm" + first)) << first << " leaked";
 }
 
-// Before issue 24 a newline in a load_weather path or a client name went into the log as it was, so a
+// Regression: a newline in a load_weather path or a client name went into the log as it was, so a
 // client could write lines that looked like the service's own. Control characters are escaped now.
 TEST(ServiceHostile, ClientTextCannotForgeLogLines)
 {

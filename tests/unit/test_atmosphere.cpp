@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The atmosphere and phase-function shader math, compiled as C++ (STYLE §8), and the CPU reference.
+// The atmosphere and phase-function shader math, compiled as C++ (docs/style.md §8), and the CPU reference.
 #include "skyservice/sky/atmosphere.h"
 #include "skyservice/sky/atmosphere_reference.h"
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Cloud shader math (shaders/lib/shell.glsl, cloud_shape.glsl, large_scale.glsl) compiled as C++ and checked
-// against analytic cases and a double-precision reference (STYLE §8, §16).
+// against analytic cases and a double-precision reference (docs/style.md §8, §14).
 #include "shaders/shared/noise_params.h"
 #include "shaders/shared/weather_window.h"
 
@@ -243,7 +243,7 @@ TEST(CloudMath, BaseShapeStatisticsMatchTheEqualisationConstants)
     }
 }
 
-// World-space march jitter (shaders/lib/world_jitter.glsl, issue 5): a function of the direction only,
+// World-space march jitter (shaders/lib/world_jitter.glsl): a function of the direction only,
 // in range, each cube face elsewhere in the tile, one texel angle apart is one texel apart.
 TEST(WorldJitter, NeighbouringDirectionsReadNeighbouringTexels)
 {
@@ -278,7 +278,7 @@ TEST(WorldJitter, NeighbouringDirectionsReadNeighbouringTexels)
     EXPECT_GE(moved, 190) << "one texel angle apart is one texel apart (up to rounding at cell edges)";
 }
 
-// The cloud history texel (shaders/lib/cloud_history.glsl, issue 5 memory): its precision as the texture
+// The cloud history texel (shaders/lib/cloud_history.glsl, packed for the memory budget): its precision as the texture
 // unit decodes it, and that decoding and packing again gives the same bits (a still pixel keeps its history).
 namespace
 {
@@ -336,7 +336,7 @@ TEST(CloudHistory, PacksRadianceAlphaAndDepthWithinTheStatedPrecision)
     EXPECT_EQ(d, 0.0f);
 }
 
-// Cumulus domes (issue 22): the coverage threshold rises with height, so the cloud narrows toward its
+// Cumulus domes: the coverage threshold rises with height, so the cloud narrows toward its
 // top instead of standing as a column with vertical walls; other stratiform genera keep theirs.
 TEST(CloudMath, CumulusNarrowsWithHeightAndTheAnvilThinsTowardItsEdge)
 {
@@ -357,7 +357,7 @@ TEST(CloudMath, CumulusNarrowsWithHeightAndTheAnvilThinsTowardItsEdge)
     EXPECT_EQ(glsl::anvilSlabProfile(1.0f, 1.0f), 0.0f);  // flat top
 }
 
-// Ragged bases (issue 22): stratus and nimbostratus bases are torn up to a share of the layer, other
+// Ragged bases: stratus and nimbostratus bases are torn up to a share of the layer, other
 // genera keep a flat base; the factor only removes cloud (never above 1, 0 below the local base), is 1
 // above the torn part, and where the tear is 0 the base stays where it was.
 TEST(CloudMath, StratusAndNimbostratusBasesAreRagged)

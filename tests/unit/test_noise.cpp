@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Cloud noise (docs/model.md): shaders/lib/noise.glsl compiled as C++ (STYLE §8) and the CPU blue noise.
+// Cloud noise (docs/model.md): shaders/lib/noise.glsl compiled as C++ (docs/style.md §8) and the CPU blue noise.
 #include "shaders/shared/noise_params.h"
 #include "skyservice/sky/blue_noise.h"
 

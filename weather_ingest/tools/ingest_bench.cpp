@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-// sky-ingest-bench: the speed benchmark of issue 3 (README "Speed"). Writes a global 0.25° (1440 x 721)
+// sky-ingest-bench: the ingest speed benchmark (README "Speed"). Writes a global 0.25° (1440 x 721)
 // GFS-like GRIB2 file with ecCodes, regridded bilinearly from the 2.5° sample's fields that the mapping
 // uses, then times `sky-ingest convert` on it in a child process (wall time and peak RSS from wait4) and
 // the snapshot load. With --grid hrrr it writes instead an HRRR-sized Lambert conformal file (1799 x 1059
 // at 3 km, the CONUS grid's keys, 40 messages of the fields the HRRR mapping uses, smooth synthetic values,
-// grid-relative winds) and times its conversion (issue 23). Not a test: timings depend on the machine.
+// grid-relative winds) and times its conversion. Not a test: timings depend on the machine.
 #include "weather_ingest/grib_fields.h"
 #include "weather_ingest/grib_writer.h"
 #include "weather_ingest/ingest_error.h"
