@@ -8,9 +8,9 @@ namespace sky
 namespace
 {
 
-// The service keeps its last 64 frames: read often enough to see each even at a few thousand per second,
-// seldom enough that the reads cost the daemon's control thread little.
-constexpr auto kReadEvery = std::chrono::milliseconds(10);
+// The service keeps its last 16 frames: read often enough to see each even at 3000 per second, seldom
+// enough that the reads cost the daemon's control thread little.
+constexpr auto kReadEvery = std::chrono::milliseconds(5);
 
 } // namespace
 

@@ -159,9 +159,9 @@ struct ServiceState
     uint64_t windowsFromWorker = 0;       ///< ... and those it took ready-made from the worker thread
 
     static constexpr size_t kFrameHistory = 128;
-    /// Enough for a client that reads status every few milliseconds to see every frame's pass times at
-    /// thousands of frames per second, small enough for the status line's 64 KiB.
-    static constexpr size_t kRecentFrames = 64;
+    /// Enough for a client that reads status every 5 ms to see every frame's pass times at 3000 frames per
+    /// second; few enough (about 2.5 KB) that a status still fits the 8 KiB buffers clients read it into.
+    static constexpr size_t kRecentFrames = 16;
 
     void recordFrameTimes(FrameTimes times)
     {
