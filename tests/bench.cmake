@@ -61,6 +61,19 @@ if(TARGET sky-service-bench)
              ${SKY_SERVICE_BENCH_BIN} --scene clear --size 160x90 --frames 3 --warmup 1 --transport vulkan
              --layers display,clouds,depth)
     set_tests_properties(bench.service_layers_vulkan PROPERTIES TIMEOUT 180)
+    # The flight path (--flight-path) in 30 coarse steps of 8 s over its four minutes: the report's table,
+    # and its JSON (bench/check_flight_json.cmake) with the slowest second, the daemon's per-pass times
+    # and the eye's stretch inside the cumulus layer.
+    add_test(NAME bench.service_flight COMMAND ${SKY_BENCH_EXPECT} 0 "slowest second: from [0-9.]+ s"
+             ${SKY_SERVICE_BENCH_BIN} --flight-path --size 32x18 --flight-step 8 --flight-seconds 240 --warmup 2
+             --json ${SKY_BENCH_TMP}/flight.json)
+    set_tests_properties(bench.service_flight PROPERTIES TIMEOUT 240)
+    add_test(NAME bench.service_flight_json COMMAND ${CMAKE_COMMAND} -DJSON=${SKY_BENCH_TMP}/flight.json -DFRAMES=30
+             -DSECONDS=240 -P ${CMAKE_CURRENT_LIST_DIR}/bench/check_flight_json.cmake)
+    set_tests_properties(bench.service_flight_json PROPERTIES DEPENDS bench.service_flight)
+    # A flight path through both transports at once is a usage error.
+    add_test(NAME bench.service_flight_both COMMAND ${SKY_BENCH_EXPECT} 2 "--flight-path: one --size"
+             ${SKY_SERVICE_BENCH_BIN} --flight-path --transport both)
     # A malformed size is a usage error that names the argument; no daemon starts.
     # (Not labelled cpu: ./sky test's sanitizer build does not build the bench.)
     add_test(NAME bench.service_bad_size COMMAND ${SKY_BENCH_EXPECT} 2 "--size 1920by1080: expected WIDTHxHEIGHT"

@@ -11,7 +11,9 @@
 # bench writes its synthetic weather with sky_weather, which needs neither), then runs the plan below
 # and writes service-*.json, bench-reprojected-*.json, clocks.csv and service-log.txt to $OUT.
 # Knobs (environment): SKY_SVC_RUNS (which runs, default all of them, in this order:
-# "1080p 1080p-layers 1080p-layers-vulkan 1080p-shadow 4k 640 rate1000 sky-bench baseline"; "before" runs
+# "1080p 1080p-layers 1080p-layers-vulkan 1080p-shadow 4k 640 rate1000 sky-bench baseline"; "flight" the flight
+# path at 1080p over shm (flight-*.json and the frames' flight-*.csv; SKY_SVC_FLIGHT_STEP simulated s per frame,
+# default 1/60: 14,400 frames), "before-flight" the same with the earlier tree's daemon; "before" runs
 # 1080p shm with an earlier tree prepared with `prepare-before REV`, the frame path before a change, in the same
 # call; "before-both" its shm and Vulkan transports, "before-shadow" with a 1024² shadow map, "sky-bench-before"
 # the renderer alone with the earlier tree; "sky-bench@NAME" the renderer with the SPIR-V in .gpu/spirv-NAME,
@@ -110,6 +112,14 @@ svcBefore() {  # LABEL OPTIONS...: the earlier tree's daemon and bench, with its
     --warmup 10 --device NVIDIA --json "$OUT/service-before-$label.json" "$@"
   el "earlier tree: sky-service-bench $label rc=$?"
 }
+svcFlight() {  # LABEL SPIRV [OPTIONS...]: the flight path at 1080p over shm with this tree's bench
+  local label=$1 spirv=$2; shift 2
+  el "sky-service-bench flight path $label: $*"
+  SKY_SPIRV_DIR=$spirv timeout "$LIMIT" $SB --flight-path --size 1920x1080 --transport shm --warmup 30 \
+    --flight-step "${SKY_SVC_FLIGHT_STEP:-0.0166666666666667}" --device NVIDIA --json "$OUT/flight-$label.json" \
+    --frames-csv "$OUT/flight-$label.csv" "$@"
+  el "sky-service-bench flight path $label rc=$?"
+}
 skyBench() {  # SUFFIX BENCH SPIRV [OPTIONS...]
   el "sky-bench$1 reprojected 1920x1080 ${*:4}"
   SKY_SPIRV_DIR=$3 timeout "$LIMIT" "$2" --scene "$SCENES" --width 1920 --height 1080 --frames 100 --warmup 20 \
@@ -128,6 +138,10 @@ for run in ${SKY_SVC_RUNS:-1080p 1080p-layers 1080p-layers-vulkan 1080p-shadow 4
     before-shadow) svcBefore 1920x1080-shadow1024 --size 1920x1080 --shadow-map 1024 \
                      --frames ${SKY_SVC_BEFORE_FRAMES:-300} ;;
     1080p-shadow) svc 1920x1080-shadow1024 --size 1920x1080 --shadow-map 1024 ;;
+    flight) svcFlight 1920x1080 "$SKY_SPIRV_DIR" ;;
+    before-flight)  # the earlier tree's daemon and SPIR-V flown by this tree's bench (an earlier bench has no
+                    # flight path); a daemon without per-frame times in its status gives fps and frame times only
+      svcFlight before-1920x1080 "$G/before/spirv" --daemon /tmp/build-before/skyservice/skyservice ;;
     4k) svc 3840x2160 --size 3840x2160 ;;
     640) svc 640x360 --size 640x360 ;;
     rate1000) svc 1920x1080-rate1000 --size 1920x1080 --rate-hz 1000 ;;

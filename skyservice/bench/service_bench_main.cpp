@@ -10,9 +10,11 @@
 // reports delivered frames per second, set_view -> frame latency (median/p95/p99, client clock), the
 // daemon's CPU time per frame (/proc, all its threads: on lavapipe that includes the rendering itself),
 // the daemon's own frame_ms, and the SM clock at each scene's start and end (nvidia-smi, where it exists).
+// --flight-path flies one climbing, turning path through the cumulus instead (service_flight_bench.h).
 // Exit codes: 0 ok, 1 runtime failure (daemon, socket, frames), 2 bad command line.
 #include "skyservice/bench/service_client_run.h"
 #include "skyservice/bench/service_daemon.h"
+#include "skyservice/bench/service_flight_bench.h"
 #include "skyservice/bench/service_host_metrics.h"
 #include "skyservice/bench/service_session.h"
 #include "skyservice/output/image_files.h"
@@ -20,6 +22,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <unistd.h>
 
@@ -49,6 +52,9 @@ struct ServiceBenchOptions
     std::string device;
     std::string daemon;
     std::string json;
+    bool flightPath = false;
+    FlightPathSpec flight;
+    std::string framesCsv;
 };
 
 struct Size
@@ -207,8 +213,46 @@ bool runScene(const ServiceBenchOptions& o, const std::vector<Size>& sizes, cons
     return daemon.stop(kDaemonStopTimeoutS, error);
 }
 
+/// --flight-path: one size, one transport, the path instead of the scenes.
+int runFlightPath(const ServiceBenchOptions& o)
+{
+    std::vector<Size> sizes;
+    std::string error;
+    if (!parseSizes(o, sizes, error) || sizes.size() != 1 || o.transport == "both" || o.rateHz > 0 ||
+        o.shadowMapSize > 0 || o.layers != "display")
+    {
+        std::fprintf(stderr, "sky-service-bench: --flight-path: %s\n",
+                     error.empty() ? "one --size, --transport shm or vulkan, no --rate-hz, --shadow-map or --layers"
+                                   : error.c_str());
+        return kExitUsage;
+    }
+    FlightBenchSettings s;
+    s.spec = o.flight;
+    s.width = sizes.front().width;
+    s.height = sizes.front().height;
+    s.transport = o.transport;
+    s.warmup = o.warmup;
+    s.device = o.device;
+    s.daemon = o.daemon;
+    s.json = o.json;
+    s.csv = o.framesCsv;
+    s.dir = makeTempDir();
+    if (s.dir.empty())
+    {
+        std::fprintf(stderr, "sky-service-bench: cannot create a temporary folder under $TMPDIR or /tmp: %s\n",
+                     std::strerror(errno));
+        return kExitRuntime;
+    }
+    const int code = runFlightPathBench(s);
+    std::error_code ec;
+    std::filesystem::remove_all(s.dir, ec);
+    return code;
+}
+
 int runServiceBench(const ServiceBenchOptions& o)
 {
+    if (o.flightPath)
+        return runFlightPath(o);
     std::vector<BenchScene> scenes;
     std::vector<Size> sizes;
     ServiceBenchRun run;
@@ -305,6 +349,14 @@ int main(int argc, char** argv)
     app.add_option("--device", o.device, "The daemon's Vulkan device: index or part of its name");
     app.add_option("--daemon", o.daemon, "The skyservice executable (default: next to this program)");
     app.add_option("--json", o.json, "Write the results as JSON to this file");
+    app.add_flag("--flight-path", o.flightPath,
+                 "Fly the flight path instead of the scenes: from 44.3 N 7.5 E at 300 m, 250 m/s, climbing 15 m/s "
+                 "and turning 3 deg/s through the built-in cumulus, one frame per --flight-step");
+    app.add_option("--flight-step", o.flight.stepS, "Flight path: simulated seconds per delivered frame")
+        ->check(CLI::Range(1e-4, 60.0));
+    app.add_option("--flight-seconds", o.flight.seconds, "Flight path: simulated length (s; 240 reaches 3900 m)")
+        ->check(CLI::Range(1e-3, 3600.0));
+    app.add_option("--frames-csv", o.framesCsv, "Flight path: write each frame's pose and times to this CSV file");
     try
     {
         app.parse(argc, argv);

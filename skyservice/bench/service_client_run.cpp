@@ -6,6 +6,7 @@
 #include "skyservice/bench/service_session.h"
 
 #include <GeographicLib/Geodesic.hpp>
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -228,7 +229,17 @@ bool runOnRequest(const ServiceRunSettings& s, Session& session, ServiceRunResul
                 return false;
             timedStart = Clock::now();
         }
-        if (i > 0) // one 60 Hz frame of flight along the heading, as sky-bench --speed
+        if (!s.path.empty())
+        {
+            const EyePose& eye = s.path[timed ? std::min<size_t>(i - s.warmup, s.path.size() - 1) : 0];
+            view.lat_deg = eye.latDeg;
+            view.lon_deg = eye.lonDeg;
+            view.alt_m = eye.altitudeM;
+            view.heading_deg = eye.headingDeg;
+            view.pitch_deg = eye.pitchDeg;
+            view.roll_deg = eye.rollDeg;
+        }
+        else if (i > 0) // one 60 Hz frame of flight along the heading, as sky-bench --speed
             geodesic.Direct(view.lat_deg, view.lon_deg, view.heading_deg, s.speedMps / 60.0, view.lat_deg,
                             view.lon_deg);
         const Clock::time_point asked = Clock::now();
@@ -252,6 +263,8 @@ bool runOnRequest(const ServiceRunSettings& s, Session& session, ServiceRunResul
         if (timed)
         {
             out.latencyMs.push_back(msBetween(asked, inHand));
+            out.inHandS.push_back(msBetween(timedStart, inHand) / 1000.0);
+            out.frameIds.push_back(frame.frame_id);
             if (haveLast)
                 out.intervalMs.push_back(msBetween(lastInHand, inHand));
             ++out.frames;

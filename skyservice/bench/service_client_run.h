@@ -5,7 +5,8 @@
 // Render on request (the service's render_rate_hz 0): per frame the eye moves one 60 Hz step along its
 // heading, then set_view, request_frame, wait_frame, acquire_frame, read (shared memory: one byte per
 // 4 KiB page of the pixels and shadow map, so that the pages are really fetched; zero-copy: wait for the
-// service's timeline semaphore where it exports one), release_frame. Latency = set_view -> read.
+// service's timeline semaphore where it exports one), release_frame. Latency = set_view -> read. A path
+// of poses (the flight path) replaces the straight line.
 // At the service's own rate: the view is set once and the client only waits, acquires, reads, releases.
 #pragma once
 
@@ -14,6 +15,7 @@
 
 #include <string>
 #include <sys/types.h>
+#include <vector>
 
 namespace sky
 {
@@ -28,6 +30,9 @@ struct ServiceRunSettings
     uint32_t layers = 1u << SKY_LAYER_DISPLAY; ///< shm: the layers subscribed (bit k = SKY_LAYER_k); each is read
     uint32_t frames = 300, warmup = 30;
     double speedMps = 250;      ///< request mode: eye speed along its heading
+    /// Request mode: when not empty, the eye of each timed frame (frames = its size; the warm-up frames
+    /// hold its first pose) instead of the scene's pose moved at speedMps.
+    std::vector<EyePose> path;
     bool onRequest = true;      ///< false: the service renders at its own rate, the client only waits
     double frameTimeoutS = 120; ///< longest wait for one frame
 };

@@ -26,6 +26,8 @@ struct ServiceRunResult
     double deliveredFps = 0;         ///< frames / elapsedS
     std::vector<double> latencyMs;   ///< request mode: set_view -> frame in hand (pixels read), per frame
     std::vector<double> intervalMs;  ///< between consecutive frames in hand, per frame after the first
+    std::vector<double> inHandS;     ///< request mode: when each frame was in hand (s since the first timed set_view)
+    std::vector<uint64_t> frameIds;  ///< request mode: each timed frame's id
     uint64_t daemonFrames = 0;       ///< frames the daemon rendered during the timed part (status frames_rendered)
     double daemonCpuS = -1;          ///< the daemon's CPU time during the timed part (all threads; -1 unknown)
     double daemonCpuMsPerFrame = -1; ///< daemonCpuS / daemonFrames (ms; -1 unknown)

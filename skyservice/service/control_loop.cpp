@@ -45,6 +45,25 @@ double quantile(std::vector<double> values, double q)
     return values[k];
 }
 
+/// Milliseconds to the microsecond: finer is noise, and the status line has 64 KiB.
+double roundedMs(double ms) { return std::round(ms * 1000.0) / 1000.0; }
+
+/// The status reply's `recent_frames`: per published frame (oldest first) its id, wall-clock time, the
+/// copy into shared memory and the GPU time of each pass.
+nlohmann::json recentFramesJson(const std::deque<FrameTimes>& frames)
+{
+    nlohmann::json list = nlohmann::json::array();
+    for (const FrameTimes& f : frames)
+    {
+        nlohmann::json gpu = nlohmann::json::object();
+        for (const auto& [pass, ms] : f.gpuMs)
+            gpu[pass] = roundedMs(ms);
+        list.push_back({{"id", f.frameId}, {"ms", roundedMs(f.frameMs)}, {"publish_ms", roundedMs(f.publishMs)},
+                        {"gpu_ms", std::move(gpu)}});
+    }
+    return list;
+}
+
 }  // namespace
 
 ControlSocketServer::Handlers ControlLoop::handlers()
@@ -132,7 +151,8 @@ void ControlLoop::dispatch(ClientId client, const Request& request)
         c_.server->send(client, replyWithId(request, {{"type", "hello"},
                                                      {"protocol", kProtocolVersion},
                                                      {"service", "skyservice 0.1"},
-                                                     {"device", c_.deviceName},
+                                                     {"recent_frames", recentFramesJson(s.recentFrames)},
+            {"device", c_.deviceName},
                                                      {"max_width", c_.limits.maxWidth},
                                                      {"max_height", c_.limits.maxHeight}}));
         return;
@@ -406,6 +426,7 @@ nlohmann::json ControlLoop::statusJson()
              {{"last", s.frameMs.empty() ? 0.0 : s.frameMs[(s.frameMsNext + s.frameMs.size() - 1) % s.frameMs.size()]},
               {"median", quantile(s.frameMs, 0.5)},
               {"p95", quantile(s.frameMs, 0.95)}}},
+            {"recent_frames", recentFramesJson(s.recentFrames)},
             {"device", c_.deviceName},
             {"driver", c_.driver},
             {"device_memory_bytes", s.deviceMemoryBytes},

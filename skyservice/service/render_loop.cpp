@@ -88,6 +88,7 @@ struct RenderLoop::Impl
     VulkanExport exporter;
     std::string lastLoggedError;
     std::optional<InFlightFrame> inFlight;
+    double lastPublishMs = 0;  ///< the last completed frame's copy into the ring and export (ms)
     /// write_files requests that came while the last frame had no pixels on the host (or no linear frame
     /// for the EXR): they are written after the next frame, which reads them back.
     std::vector<RenderJob> pendingWriteFiles;
@@ -322,11 +323,13 @@ void RenderLoop::Impl::completeFrame(InFlightFrame& frame)
             f.shadow = shadowGeoRef(result);
             f.shadowId = result.shadowMapId;
         }
+        const SteadyClock::time_point publishStart = SteadyClock::now();
         uint32_t slot = setup.ring->beginSlot();
         if (exporter.active() && !exporter.exportFrame(r, slot, frame.id, result, frame.exportLayers, error))
             SKY_LOG_WARN("frame %llu: zero-copy export: %s", (unsigned long long)frame.id, error.c_str());
         if (!setup.ring->endSlot(f, error))
             SKY_LOG_WARN("frame %llu: not published: %s", (unsigned long long)frame.id, error.c_str());
+        lastPublishMs = std::chrono::duration<double, std::milli>(SteadyClock::now() - publishStart).count();
         error.clear();
     }
     for (const FilesSubscription& sub : frame.files)
@@ -379,6 +382,7 @@ void RenderLoop::Impl::frameDone(uint64_t id, const SkyStatus& status, double ms
         s.lastFrameId = id;
         ++s.framesRendered;
         s.recordFrameMs(ms);
+        s.recordFrameTimes(FrameTimes{id, ms, lastPublishMs, result.gpuMs});
         s.frameWeather = FrameWeather{lastDrawn.serviceVersion, lastDrawn.source, result.weatherValidTimeUnixS, true};
     }
     s.weatherPending = weatherSchedule.pending();

@@ -26,6 +26,16 @@ namespace sky
 
 using SteadyClock = std::chrono::steady_clock;
 
+/// Where one published frame's time went: what a client needs to tell a slow frame's cause (the GPU's
+/// passes, the copy into shared memory) from its own side's.
+struct FrameTimes
+{
+    uint64_t frameId = 0;
+    double frameMs = 0;    ///< submit to published, wall clock
+    double publishMs = 0;  ///< the copy into the shared-memory ring and the zero-copy export, wall clock
+    std::map<std::string, double> gpuMs;  ///< GPU time per pass (RenderResult::gpuMs)
+};
+
 /// Simulated UTC: base time plus rate * real seconds since the base was set.
 struct SimClock
 {
@@ -138,6 +148,7 @@ struct ServiceState
     uint64_t framesRendered = 0;
     std::vector<double> frameMs;   ///< the last kFrameHistory frame times (ring), ms
     size_t frameMsNext = 0;
+    std::deque<FrameTimes> recentFrames;  ///< the last kRecentFrames published frames, oldest first
     uint64_t deviceMemoryBytes = 0;
     uint64_t hostReadbackBytes = 0;  ///< the frames' host-cached readback buffers (system RAM)
     std::string lastRenderError;
@@ -148,6 +159,16 @@ struct ServiceState
     uint64_t windowsFromWorker = 0;       ///< ... and those it took ready-made from the worker thread
 
     static constexpr size_t kFrameHistory = 128;
+    /// Enough for a client that reads status every 5 ms to see every frame's pass times at 3000 frames per
+    /// second; few enough (about 2.5 KB) that a status still fits the 8 KiB buffers clients read it into.
+    static constexpr size_t kRecentFrames = 16;
+
+    void recordFrameTimes(FrameTimes times)
+    {
+        recentFrames.push_back(std::move(times));
+        while (recentFrames.size() > kRecentFrames)
+            recentFrames.pop_front();
+    }
 
     void recordFrameMs(double ms)
     {
