@@ -130,31 +130,35 @@ bool boundaryEnclosesPole(const std::vector<double>& lon, size_t ny, size_t nx)
     return std::abs(turn) > 180.0;
 }
 
-} // namespace
-
-CurvilinearResampler::CurvilinearResampler(const std::vector<float>& latDeg, const std::vector<float>& lonDeg,
-                                           size_t ny, size_t nx, size_t maxCells)
-    : nx_(nx), ny_(ny)
+/// The source points in degrees and as unit vectors, checked.
+struct SourcePoints
 {
-    if (ny < 2 || nx < 2 || latDeg.size() != ny * nx || lonDeg.size() != ny * nx)
-        throw std::invalid_argument("2D coordinates need at least 2 x 2 points and ny * nx values");
-    const size_t n = ny * nx;
-    if (n >= kWrapsRound)
-        throw std::length_error("more than 2^31 source points");
-    std::vector<double> lat(n), lon(n);
-    std::vector<Vec3> v(n);
+    std::vector<double> lat, lon;
+    std::vector<Vec3> unit;
     double latSum = 0;
+};
+
+SourcePoints readSourcePoints(const std::vector<float>& latDeg, const std::vector<float>& lonDeg, size_t n)
+{
+    SourcePoints s;
+    s.lat.resize(n);
+    s.lon.resize(n);
+    s.unit.resize(n);
     for (size_t k = 0; k < n; ++k)
     {
         if (!std::isfinite(latDeg[k]) || !std::isfinite(lonDeg[k]) || std::abs(latDeg[k]) > 90.0f)
             throw std::invalid_argument("2D coordinates contain a missing or invalid latitude/longitude");
-        lat[k] = latDeg[k];
-        lon[k] = lonDeg[k];
-        v[k] = unitVector(lat[k], lon[k]);
-        latSum += lat[k];
+        s.lat[k] = latDeg[k];
+        s.lon[k] = lonDeg[k];
+        s.unit[k] = unitVector(s.lat[k], s.lon[k]);
+        s.latSum += s.lat[k];
     }
+    return s;
+}
 
-    // Mean spacing (degrees of great circle) between neighbours along rows and columns.
+/// Mean spacing (degrees of great circle) between neighbours along rows and columns.
+double meanNeighbourStepDeg(const std::vector<Vec3>& v, size_t ny, size_t nx)
+{
     double stepSum = 0;
     size_t steps = 0;
     for (size_t j = 0; j < ny; ++j)
@@ -168,176 +172,280 @@ CurvilinearResampler::CurvilinearResampler(const std::vector<float>& latDeg, con
     const double stepDeg = stepSum / double(steps) / kRadPerDeg;
     if (!(stepDeg > 1e-6))
         throw std::invalid_argument("2D coordinates do not span an area");
+    return stepDeg;
+}
 
-    // Columns that close on themselves: the middle row's last point is about one step from its first.
+/// Columns that close on themselves: the middle row's last point is about one step from its first.
+bool columnsCloseOnThemselves(const std::vector<Vec3>& v, size_t ny, size_t nx)
+{
     const size_t jm = ny / 2;
     double rowStep = 0;
     for (size_t i = 0; i + 1 < nx; ++i)
         rowStep += angleRad(v[jm * nx + i], v[jm * nx + i + 1]);
     rowStep /= double(nx - 1);
-    periodic_ = nx >= 3 && angleRad(v[jm * nx], v[jm * nx + nx - 1]) < 1.5 * rowStep;
-    const bool pole = !periodic_ && boundaryEnclosesPole(lon, ny, nx);
-    global_ = periodic_ || pole;
+    return nx >= 3 && angleRad(v[jm * nx], v[jm * nx + nx - 1]) < 1.5 * rowStep;
+}
 
-    double latMin = *std::min_element(lat.begin(), lat.end());
-    double latMax = *std::max_element(lat.begin(), lat.end());
-    const double meanLat = latSum / double(n);
+/// The regular target grid at the source's mean spacing, covering its latitudes and longitudes (all of them
+/// round the globe for periodic columns or a boundary round a pole). lon0Deg is not yet wrapped.
+LatLonGrid chooseTargetGrid(const SourcePoints& s, size_t ny, size_t nx, double stepDeg, bool periodic, bool pole,
+                            size_t maxCells)
+{
+    const bool global = periodic || pole;
+    double latMin = *std::min_element(s.lat.begin(), s.lat.end());
+    double latMax = *std::max_element(s.lat.begin(), s.lat.end());
+    const double meanLat = s.latSum / double(s.lat.size());
     if (pole)
         (meanLat > 0 ? latMax : latMin) = meanLat > 0 ? 90.0 : -90.0;
     const double cosLat0 = std::max(std::cos(meanLat * kRadPerDeg), 0.01);
-    grid_.lat0Deg = latMin;
-    grid_.dLatDeg = stepDeg;
+    LatLonGrid grid;
+    grid.lat0Deg = latMin;
+    grid.dLatDeg = stepDeg;
     double nLon = 0;
-    if (periodic_)
+    if (periodic)
     {
         nLon = double(nx);
-        grid_.lon0Deg = lon[0];
+        grid.lon0Deg = s.lon[0];
     }
     else if (pole)
     {
         nLon = std::ceil(360.0 / (stepDeg / cosLat0));
-        grid_.lon0Deg = -180.0;
+        grid.lon0Deg = -180.0;
     }
     else
     {
-        const double lonRef = lon[jm * nx + nx / 2];
+        const size_t jm = ny / 2;
+        const double lonRef = s.lon[jm * nx + nx / 2];
         double lonMin = 1e9, lonMax = -1e9;
-        for (const double l : lon)
+        for (const double l : s.lon)
         {
             const double u = lonRef + wrapLongitudeDeg(l - lonRef);
             lonMin = std::min(lonMin, u);
             lonMax = std::max(lonMax, u);
         }
-        grid_.lon0Deg = lonMin;
-        grid_.dLonDeg = stepDeg / cosLat0;
-        nLon = std::floor((lonMax - lonMin) / grid_.dLonDeg + 1e-9) + 1;
+        grid.lon0Deg = lonMin;
+        grid.dLonDeg = stepDeg / cosLat0;
+        nLon = std::floor((lonMax - lonMin) / grid.dLonDeg + 1e-9) + 1;
     }
-    if (global_)
-        grid_.dLonDeg = 360.0 / nLon;
-    const double nLat = std::floor((latMax - latMin) / grid_.dLatDeg + 1e-9) + 1;
+    if (global)
+        grid.dLonDeg = 360.0 / nLon;
+    const double nLat = std::floor((latMax - latMin) / grid.dLatDeg + 1e-9) + 1;
     if (nLat * nLon > double(maxCells))
         throw std::length_error("resampled grid too large");
-    grid_.nLat = static_cast<uint32_t>(nLat);
-    grid_.nLon = static_cast<uint32_t>(nLon);
+    grid.nLat = static_cast<uint32_t>(nLat);
+    grid.nLon = static_cast<uint32_t>(nLon);
+    return grid;
+}
+
+/// Sines and cosines of the target grid's row latitudes and column longitudes.
+struct TargetTrig
+{
+    std::vector<double> sinLat, cosLat, sinLon, cosLon;
+
+    explicit TargetTrig(const LatLonGrid& grid)
+        : sinLat(grid.nLat), cosLat(grid.nLat), sinLon(grid.nLon), cosLon(grid.nLon)
+    {
+        for (uint32_t r = 0; r < grid.nLat; ++r)
+        {
+            const double phi = (grid.lat0Deg + double(r) * grid.dLatDeg) * kRadPerDeg;
+            sinLat[r] = std::sin(phi);
+            cosLat[r] = std::cos(phi);
+        }
+        for (uint32_t c = 0; c < grid.nLon; ++c)
+        {
+            const double lambda = (grid.lon0Deg + double(c) * grid.dLonDeg) * kRadPerDeg;
+            sinLon[c] = std::sin(lambda);
+            cosLon[c] = std::cos(lambda);
+        }
+    }
+
+    Vec3 unit(size_t row, size_t col) const
+    {
+        return {cosLat[row] * cosLon[col], cosLat[row] * sinLon[col], sinLat[row]};
+    }
+};
+
+/// What every quad's search needs to know of the source and target grids.
+struct QuadSearch
+{
+    const SourcePoints& source;
+    const LatLonGrid& grid;
+    size_t nx;
+    bool pole;           ///< the source boundary winds round a pole
+    bool global;         ///< the target grid wraps round in longitude
+    double meanLat;      ///< mean source latitude (degrees): its sign says which pole
+    double targetSpanDeg;  ///< longitude from the target's first column to its last
+};
+
+/// One source quad, projected onto a plane, and the target rows and columns it may cover.
+struct QuadFootprint
+{
+    std::array<size_t, 4> k{};  ///< corner indices: (i, j), (i+1, j), (i, j+1), (i+1, j+1)
+    bool gnomonic = false;
+    Gnomonic g;
+    double lon00 = 0, cosC = 0, latC = 0;
+    std::array<Point, 4> corners{};
+    long r0 = 0, r1 = 0, c0 = 0, c1 = 0;
+    double tolerance = 0;
+
+    // Away from the poles a quad is taken with straight edges in longitude and latitude (scaled by
+    // cos(latitude)), so rows of a lat/lon-aligned grid (Mercator, Gaussian) keep their exact latitude; near
+    // a pole, and round it, in the gnomonic projection (only set up there: most quads of most grids never
+    // need it).
+    bool project(const Vec3& unit, double pointLat, double pointLon, Point& out) const
+    {
+        if (gnomonic)
+            return g.project(unit, out);
+        out = {wrapLongitudeDeg(pointLon - lon00) * cosC, pointLat - latC};
+        return true;
+    }
+};
+
+struct QuadBounds
+{
+    double latLo = 90, latHi = -90, lonLo = 0, lonHi = 0;  ///< longitudes relative to corner 0
+};
+
+QuadBounds quadBounds(const SourcePoints& s, const std::array<size_t, 4>& k)
+{
+    QuadBounds b;
+    for (size_t q = 0; q < 4; ++q)
+    {
+        b.latLo = std::min(b.latLo, s.lat[k[q]]);
+        b.latHi = std::max(b.latHi, s.lat[k[q]]);
+        const double rel = wrapLongitudeDeg(s.lon[k[q]] - s.lon[k[0]]);
+        b.lonLo = std::min(b.lonLo, rel);
+        b.lonHi = std::max(b.lonHi, rel);
+    }
+    return b;
+}
+
+/// True when the pole lies inside the quad, seen in its gnomonic projection g.
+bool quadHoldsPole(const Gnomonic& g, const std::vector<Vec3>& unit, const std::array<size_t, 4>& k, double meanLat)
+{
+    std::array<Point, 4> gp{};
+    Point pp{};
+    double a = 0, b = 0;
+    const Vec3 poleVector{0, 0, meanLat > 0 ? 1.0 : -1.0};
+    bool ok = g.project(poleVector, pp);
+    for (size_t q = 0; q < 4; ++q)
+        ok = ok && g.project(unit[k[q]], gp[q]);
+    return ok && inverseBilinear(pp, gp[0], gp[1], gp[2], gp[3], a, b, 0.0);
+}
+
+/// The target columns c0..c1 (not yet wrapped when global) that the quad's longitudes span.
+void quadColumns(const QuadSearch& t, const QuadBounds& b, QuadFootprint& f)
+{
+    const LatLonGrid& grid = t.grid;
+    double off = std::fmod(t.source.lon[f.k[0]] + b.lonLo - grid.lon0Deg, 360.0);
+    if (off < 0)
+        off += 360.0;
+    if (!t.global && off > t.targetSpanDeg + 0.5 * (360.0 - t.targetSpanDeg))
+        off -= 360.0; // the quad starts west of the target's first column
+    f.c0 = static_cast<long>(std::ceil(off / grid.dLonDeg - 1e-9));
+    f.c1 = static_cast<long>(std::floor((off + b.lonHi - b.lonLo) / grid.dLonDeg + 1e-9));
+    if (!t.global)
+    {
+        f.c0 = std::max(f.c0, 0L);
+        f.c1 = std::min(f.c1, long(grid.nLon) - 1);
+    }
+}
+
+/// Projects the quad whose first corner is (i, j) and finds the target rows and columns it may cover.
+/// @return false for a degenerate quad or one that cannot be projected.
+bool locateQuad(const QuadSearch& t, size_t j, size_t i, QuadFootprint& f)
+{
+    const SourcePoints& s = t.source;
+    const size_t nx = t.nx;
+    const size_t i1 = (i + 1) % nx;
+    f.k = {j * nx + i, j * nx + i1, (j + 1) * nx + i, (j + 1) * nx + i1};
+    Vec3 c{0, 0, 0};
+    for (const size_t q : f.k)
+        for (int d = 0; d < 3; ++d)
+            c[size_t(d)] += s.unit[q][size_t(d)];
+    if (!normalise(c))
+        return false;
+    QuadBounds b = quadBounds(s, f.k);
+    const double poleLat = std::max(std::abs(b.latLo), std::abs(b.latHi));
+    f.gnomonic = poleLat > kGnomonicAboveDeg;
+    const bool nearEnclosedPole = t.pole && poleLat > 45.0;
+    double edgeRad = 0;
+    if (f.gnomonic || nearEnclosedPole)
+    {
+        f.g.setUp(c);
+        for (size_t q = 0; q < 4; ++q)
+            edgeRad = std::max(edgeRad, angleRad(s.unit[f.k[q]], s.unit[f.k[(q + 1) % 4]]));
+    }
+    f.cosC = std::cos(0.5 * (b.latLo + b.latHi) * kRadPerDeg);
+    f.lon00 = s.lon[f.k[0]];
+    f.latC = 0.5 * (b.latLo + b.latHi);
+    bool allColumns = false;
+    if (nearEnclosedPole && quadHoldsPole(f.g, s.unit, f.k, t.meanLat))
+    {
+        f.gnomonic = allColumns = true;
+        (t.meanLat > 0 ? b.latHi : b.latLo) = t.meanLat > 0 ? 90.0 : -90.0;
+    }
+    bool ok = true;
+    for (size_t q = 0; q < 4; ++q)
+        ok = ok && f.project(s.unit[f.k[q]], s.lat[f.k[q]], s.lon[f.k[q]], f.corners[q]);
+    if (!ok)
+        return false;
+    // Great-circle edges bulge polewards of their end points by up to about L^2/8 tan(lat).
+    const double bulgeDeg =
+        f.gnomonic ? edgeRad * edgeRad * (1.0 + std::tan(std::min(poleLat, 89.0) * kRadPerDeg)) / kRadPerDeg : 0.0;
+    f.r0 = static_cast<long>(std::ceil((b.latLo - bulgeDeg - t.grid.lat0Deg) / t.grid.dLatDeg - 1e-9));
+    f.r1 = static_cast<long>(std::floor((b.latHi + bulgeDeg - t.grid.lat0Deg) / t.grid.dLatDeg + 1e-9));
+    f.c0 = 0;
+    f.c1 = long(t.grid.nLon) - 1;
+    if (!allColumns)
+        quadColumns(t, b, f);
+    // Where the two kinds of quads meet their edges differ slightly: a small tolerance closes the gap.
+    f.tolerance = poleLat > kGnomonicAboveDeg - 1.0 ? 1e-3 : 1e-9;
+    return true;
+}
+
+} // namespace
+
+CurvilinearResampler::CurvilinearResampler(const std::vector<float>& latDeg, const std::vector<float>& lonDeg,
+                                           size_t ny, size_t nx, size_t maxCells)
+    : nx_(nx), ny_(ny)
+{
+    if (ny < 2 || nx < 2 || latDeg.size() != ny * nx || lonDeg.size() != ny * nx)
+        throw std::invalid_argument("2D coordinates need at least 2 x 2 points and ny * nx values");
+    const size_t n = ny * nx;
+    if (n >= kWrapsRound)
+        throw std::length_error("more than 2^31 source points");
+    const SourcePoints source = readSourcePoints(latDeg, lonDeg, n);
+    const double stepDeg = meanNeighbourStepDeg(source.unit, ny, nx);
+    periodic_ = columnsCloseOnThemselves(source.unit, ny, nx);
+    const bool pole = !periodic_ && boundaryEnclosesPole(source.lon, ny, nx);
+    global_ = periodic_ || pole;
+    grid_ = chooseTargetGrid(source, ny, nx, stepDeg, periodic_, pole, maxCells);
     cells_.assign(grid_.cellCount(), QuadPosition{});
 
-    std::vector<double> sinLat(grid_.nLat), cosLat(grid_.nLat), sinLon(grid_.nLon), cosLon(grid_.nLon);
-    for (uint32_t r = 0; r < grid_.nLat; ++r)
-    {
-        const double phi = (grid_.lat0Deg + double(r) * grid_.dLatDeg) * kRadPerDeg;
-        sinLat[r] = std::sin(phi);
-        cosLat[r] = std::cos(phi);
-    }
-    for (uint32_t c = 0; c < grid_.nLon; ++c)
-    {
-        const double lambda = (grid_.lon0Deg + double(c) * grid_.dLonDeg) * kRadPerDeg;
-        sinLon[c] = std::sin(lambda);
-        cosLon[c] = std::cos(lambda);
-    }
-    const double targetSpanDeg = double(grid_.nLon - 1) * grid_.dLonDeg;
-
-    const size_t quadColumns = periodic_ ? nx : nx - 1;
+    const TargetTrig trig(grid_);
+    const QuadSearch search{source, grid_, nx, pole, global_, source.latSum / double(n),
+                            double(grid_.nLon - 1) * grid_.dLonDeg};
+    const size_t quadColumnCount = periodic_ ? nx : nx - 1;
     for (size_t j = 0; j + 1 < ny; ++j)
-        for (size_t i = 0; i < quadColumns; ++i)
+        for (size_t i = 0; i < quadColumnCount; ++i)
         {
-            const size_t i1 = (i + 1) % nx;
-            const std::array<size_t, 4> k{j * nx + i, j * nx + i1, (j + 1) * nx + i, (j + 1) * nx + i1};
-            Vec3 c{0, 0, 0};
-            for (const size_t q : k)
-                for (int d = 0; d < 3; ++d)
-                    c[size_t(d)] += v[q][size_t(d)];
-            if (!normalise(c))
+            QuadFootprint f;
+            if (!locateQuad(search, j, i, f))
                 continue;
-            double latLo = 90, latHi = -90, lonLo = 0, lonHi = 0, edgeRad = 0;
-            for (size_t q = 0; q < 4; ++q)
-            {
-                latLo = std::min(latLo, lat[k[q]]);
-                latHi = std::max(latHi, lat[k[q]]);
-                const double rel = wrapLongitudeDeg(lon[k[q]] - lon[k[0]]);
-                lonLo = std::min(lonLo, rel);
-                lonHi = std::max(lonHi, rel);
-            }
-            // Away from the poles a quad is taken with straight edges in longitude and latitude (scaled
-            // by cos(latitude)), so rows of a lat/lon-aligned grid (Mercator, Gaussian) keep their exact
-            // latitude; near a pole, and round it, in the gnomonic projection (only set up there: most
-            // quads of most grids never need it).
-            const double poleLat = std::max(std::abs(latLo), std::abs(latHi));
-            bool gnomonic = poleLat > kGnomonicAboveDeg;
-            Gnomonic g;
-            if (gnomonic || (pole && poleLat > 45.0))
-            {
-                g.setUp(c);
-                for (size_t q = 0; q < 4; ++q)
-                    edgeRad = std::max(edgeRad, angleRad(v[k[q]], v[k[(q + 1) % 4]]));
-            }
-            bool allColumns = false;
-            const double cosC = std::cos(0.5 * (latLo + latHi) * kRadPerDeg);
-            const double lon00 = lon[k[0]], latC = 0.5 * (latLo + latHi);
-            const auto plane = [&](const Vec3& unit, double pointLat, double pointLon, Point& out)
-            {
-                if (gnomonic)
-                    return g.project(unit, out);
-                out = {wrapLongitudeDeg(pointLon - lon00) * cosC, pointLat - latC};
-                return true;
-            };
-            if (pole && poleLat > 45.0)
-            {
-                std::array<Point, 4> gp{};
-                Point pp{};
-                double a = 0, b = 0;
-                const Vec3 poleVector{0, 0, meanLat > 0 ? 1.0 : -1.0};
-                bool ok = g.project(poleVector, pp);
-                for (size_t q = 0; q < 4; ++q)
-                    ok = ok && g.project(v[k[q]], gp[q]);
-                if (ok && inverseBilinear(pp, gp[0], gp[1], gp[2], gp[3], a, b, 0.0))
-                {
-                    gnomonic = allColumns = true;
-                    (meanLat > 0 ? latHi : latLo) = meanLat > 0 ? 90.0 : -90.0;
-                }
-            }
-            std::array<Point, 4> p{};
-            bool ok = true;
-            for (size_t q = 0; q < 4; ++q)
-                ok = ok && plane(v[k[q]], lat[k[q]], lon[k[q]], p[q]);
-            if (!ok)
-                continue;
-            // Great-circle edges bulge polewards of their end points by up to about L^2/8 tan(lat).
-            const double bulgeDeg =
-                gnomonic ? edgeRad * edgeRad * (1.0 + std::tan(std::min(poleLat, 89.0) * kRadPerDeg)) / kRadPerDeg
-                         : 0.0;
-            const auto r0 = static_cast<long>(std::ceil((latLo - bulgeDeg - grid_.lat0Deg) / grid_.dLatDeg - 1e-9));
-            const auto r1 = static_cast<long>(std::floor((latHi + bulgeDeg - grid_.lat0Deg) / grid_.dLatDeg + 1e-9));
-            long c0 = 0, c1 = long(grid_.nLon) - 1;
-            if (!allColumns)
-            {
-                double off = std::fmod(lon[k[0]] + lonLo - grid_.lon0Deg, 360.0);
-                if (off < 0)
-                    off += 360.0;
-                if (!global_ && off > targetSpanDeg + 0.5 * (360.0 - targetSpanDeg))
-                    off -= 360.0; // the quad starts west of the target's first column
-                c0 = static_cast<long>(std::ceil(off / grid_.dLonDeg - 1e-9));
-                c1 = static_cast<long>(std::floor((off + lonHi - lonLo) / grid_.dLonDeg + 1e-9));
-                if (!global_)
-                {
-                    c0 = std::max(c0, 0L);
-                    c1 = std::min(c1, long(grid_.nLon) - 1);
-                }
-            }
-            // Where the two kinds of quads meet their edges differ slightly: a small tolerance closes the gap.
-            const double tolerance = poleLat > kGnomonicAboveDeg - 1.0 ? 1e-3 : 1e-9;
-            for (long r = std::max(r0, 0L); r <= std::min(r1, long(grid_.nLat) - 1); ++r)
-                for (long cc = c0; cc <= c1; ++cc)
+            const std::array<Point, 4>& p = f.corners;
+            for (long r = std::max(f.r0, 0L); r <= std::min(f.r1, long(grid_.nLat) - 1); ++r)
+                for (long cc = f.c0; cc <= f.c1; ++cc)
                 {
                     const auto col = size_t(((cc % long(grid_.nLon)) + long(grid_.nLon)) % long(grid_.nLon));
                     QuadPosition& cell = cells_[size_t(r) * grid_.nLon + col];
                     if (cell.quad != kOutside)
                         continue; // already inside a neighbouring quad (shared edge)
-                    const Vec3 t{cosLat[size_t(r)] * cosLon[col], cosLat[size_t(r)] * sinLon[col], sinLat[size_t(r)]};
                     Point tp{};
                     double a = 0, b = 0;
-                    if (!plane(t, grid_.lat0Deg + double(r) * grid_.dLatDeg,
-                               grid_.lon0Deg + double(col) * grid_.dLonDeg, tp) ||
-                        !inverseBilinear(tp, p[0], p[1], p[2], p[3], a, b, tolerance))
+                    if (!f.project(trig.unit(size_t(r), col), grid_.lat0Deg + double(r) * grid_.dLatDeg,
+                                   grid_.lon0Deg + double(col) * grid_.dLonDeg, tp) ||
+                        !inverseBilinear(tp, p[0], p[1], p[2], p[3], a, b, f.tolerance))
                         continue;
                     cell.quad = uint32_t(j * nx + i) | (i + 1 < nx ? 0u : kWrapsRound);
                     cell.a = uint16_t(std::lround(std::clamp(a, 0.0, 1.0) * double(kFractionUnit)));

@@ -370,6 +370,43 @@ GridField GribMessage::decode(size_t maxCells, GribGridCache& grids, std::shared
     return out;
 }
 
+namespace
+{
+
+/// Each point's latitude and longitude from ecCodes' iterator, checked: count of them, finite, on the sphere.
+template <typename Unsupported, typename Corrupt>
+void locatePointPositions(grib_handle* h, size_t count, GribGridPoints& p, const Unsupported& unsupported,
+                          const Corrupt& corrupt)
+{
+    int err = 0;
+    codes_iterator* it = codes_grib_iterator_new(h, 0, &err);
+    if (!it || err != CODES_SUCCESS)
+    {
+        if (it)
+            codes_grib_iterator_delete(it);
+        throw unsupported(std::string("ecCodes cannot locate its points (") + codes_get_error_message(err) +
+                          "); only grids whose points ecCodes can iterate are read (not spectral or unstructured)");
+    }
+    p.latDeg.reserve(count);
+    p.lonDeg.reserve(count);
+    double lat = 0, lon = 0, value = 0;
+    while (p.latDeg.size() <= count && codes_grib_iterator_next(it, &lat, &lon, &value) > 0)
+    {
+        p.latDeg.push_back(lat);
+        p.lonDeg.push_back(lon);
+    }
+    codes_grib_iterator_delete(it);
+    if (p.latDeg.size() != count)
+        throw corrupt("ecCodes located " + std::to_string(p.latDeg.size()) + " points for " + std::to_string(count) +
+                      " values");
+    for (size_t i = 0; i < count; ++i)
+        if (!std::isfinite(p.latDeg[i]) || !std::isfinite(p.lonDeg[i]) || std::abs(p.latDeg[i]) > 90.0 + 1e-6)
+            throw unsupported("ecCodes gives point " + std::to_string(i + 1) + " no valid position (" +
+                              std::to_string(p.latDeg[i]) + ", " + std::to_string(p.lonDeg[i]) + ")");
+}
+
+}  // namespace
+
 GribGridPoints GribMessage::locatePoints(size_t maxCells) const
 {
     grib_handle* h = handle_.get();
@@ -445,31 +482,7 @@ GribGridPoints GribMessage::locatePoints(size_t maxCells) const
     p.jPointsAreConsecutive = k.getLong("jPointsAreConsecutive", 0) != 0;
     p.alternativeRowScanning = k.getLong("alternativeRowScanning", 0) != 0;
 
-    int err = 0;
-    codes_iterator* it = codes_grib_iterator_new(h, 0, &err);
-    if (!it || err != CODES_SUCCESS)
-    {
-        if (it)
-            codes_grib_iterator_delete(it);
-        throw unsupported(std::string("ecCodes cannot locate its points (") + codes_get_error_message(err) +
-                          "); only grids whose points ecCodes can iterate are read (not spectral or unstructured)");
-    }
-    p.latDeg.reserve(count);
-    p.lonDeg.reserve(count);
-    double lat = 0, lon = 0, value = 0;
-    while (p.latDeg.size() <= count && codes_grib_iterator_next(it, &lat, &lon, &value) > 0)
-    {
-        p.latDeg.push_back(lat);
-        p.lonDeg.push_back(lon);
-    }
-    codes_grib_iterator_delete(it);
-    if (p.latDeg.size() != count)
-        throw corrupt("ecCodes located " + std::to_string(p.latDeg.size()) + " points for " + std::to_string(count) +
-                      " values");
-    for (size_t i = 0; i < count; ++i)
-        if (!std::isfinite(p.latDeg[i]) || !std::isfinite(p.lonDeg[i]) || std::abs(p.latDeg[i]) > 90.0 + 1e-6)
-            throw unsupported("ecCodes gives point " + std::to_string(i + 1) + " no valid position (" +
-                              std::to_string(p.latDeg[i]) + ", " + std::to_string(p.lonDeg[i]) + ")");
+    locatePointPositions(h, count, p, unsupported, corrupt);
     return p;
 }
 

@@ -58,104 +58,115 @@ GribGrid::GribGrid(const GribGridPoints& p, size_t maxCells)
         throw std::invalid_argument("fewer than 4 located points");
     std::vector<float> lat, lon;
     if (!p.pl.empty())
-    {
-        // Reduced grid: rows of pl[j] points evenly spaced round the globe, expanded to max(pl) columns.
-        // Rows of no points (ECMWF's reduced lat/lon grids have them at the poles) are left out.
-        if (p.pl.size() != p.nj || p.nj < 2)
-            throw std::invalid_argument("reduced grid with " + std::to_string(p.pl.size()) + " row lengths for " +
-                                        std::to_string(p.nj) + " rows");
-        size_t start = 0;
-        for (const long count : p.pl)
-        {
-            if (count < 0 || start + size_t(count) > n)
-                throw std::invalid_argument("reduced grid row lengths do not add up to the " + std::to_string(n) +
-                                            " points");
-            if (count == 0)
-                continue;
-            rowStart_.push_back(start);
-            rowPoints_.push_back(count);
-            start += size_t(count);
-        }
-        if (start != n)
-            throw std::invalid_argument("reduced grid row lengths add up to " + std::to_string(start) + ", not the " +
-                                        std::to_string(n) + " points");
-        if (rowPoints_.size() < 2)
-            throw std::invalid_argument("reduced grid with fewer than 2 rows of points");
-        nx_ = size_t(*std::max_element(rowPoints_.begin(), rowPoints_.end()));
-        ny_ = rowPoints_.size();
-        const double lon0 = p.lonDeg[0];
-        for (size_t j = 0; j < ny_; ++j)
-        {
-            const double spacing = 360.0 / double(rowPoints_[j]);
-            const double first = p.lonDeg[rowStart_[j]];
-            const double last = p.lonDeg[rowStart_[j] + size_t(rowPoints_[j]) - 1];
-            if (std::abs(wrapLongitudeDeg(last - first - spacing * double(rowPoints_[j] - 1))) > 0.25 * spacing)
-                throw std::invalid_argument("reduced grid rows do not go all the way round (a sub-area)");
-            rowShift_.push_back(wrap360(lon0 - first) / spacing);
-        }
-        lat.resize(nx_ * ny_);
-        lon.resize(nx_ * ny_);
-        for (size_t j = 0; j < ny_; ++j)
-            for (size_t c = 0; c < nx_; ++c)
-            {
-                lat[j * nx_ + c] = float(p.latDeg[rowStart_[j]]);
-                lon[j * nx_ + c] = float(lon0 + double(c) * 360.0 / double(nx_));
-            }
-    }
+        expandReducedRows(p, lat, lon);
     else
-    {
-        if (p.ni * p.nj != n)
-            throw std::invalid_argument(std::to_string(p.ni) + " x " + std::to_string(p.nj) + " points declared, " +
-                                        std::to_string(n) + " located");
-        nx_ = p.ni;
-        ny_ = p.nj;
-        if (p.jPointsAreConsecutive || p.alternativeRowScanning)
-        {
-            order_.resize(n);
-            for (size_t s = 0; s < n; ++s)
-            {
-                size_t i = p.jPointsAreConsecutive ? s / ny_ : s % nx_;
-                size_t j = p.jPointsAreConsecutive ? s % ny_ : s / nx_;
-                if (p.alternativeRowScanning && !p.jPointsAreConsecutive && (j & 1u))
-                    i = nx_ - 1 - i;
-                if (p.alternativeRowScanning && p.jPointsAreConsecutive && (i & 1u))
-                    j = ny_ - 1 - j;
-                order_[j * nx_ + i] = uint32_t(s);
-            }
-        }
-        lat.resize(n);
-        lon.resize(n);
-        for (size_t k = 0; k < n; ++k)
-        {
-            const size_t s = order_.empty() ? k : order_[k];
-            lat[k] = float(p.latDeg[s]);
-            lon[k] = float(p.lonDeg[s]);
-        }
-    }
+        orderStructuredPoints(p, lat, lon);
     resampler_ = std::make_unique<CurvilinearResampler>(lat, lon, ny_, nx_, maxCells);
     target_ = resampler_->grid();
     makeEdgeWeights(lat, resampler_->periodicColumns());
-
     if (p.pl.empty() && !resampler_->periodicColumns())
+        makeXAxisDirections(p, lat, lon);
+}
+
+void GribGrid::expandReducedRows(const GribGridPoints& p, std::vector<float>& lat, std::vector<float>& lon)
+{
+    const size_t n = p.latDeg.size();
+    // Reduced grid: rows of pl[j] points evenly spaced round the globe, expanded to max(pl) columns.
+    // Rows of no points (ECMWF's reduced lat/lon grids have them at the poles) are left out.
+    if (p.pl.size() != p.nj || p.nj < 2)
+        throw std::invalid_argument("reduced grid with " + std::to_string(p.pl.size()) + " row lengths for " +
+                                    std::to_string(p.nj) + " rows");
+    size_t start = 0;
+    for (const long count : p.pl)
     {
-        // Direction of the grid's x axis (towards increasing i in the grid's own sense), for winds that
-        // GRIB gives relative to the grid (NCEP's Lambert and polar stereographic grids do).
-        std::vector<float> cosA(lat.size()), sinA(lat.size());
-        for (size_t j = 0; j < ny_; ++j)
-            for (size_t i = 0; i < nx_; ++i)
-            {
-                const size_t a = j * nx_ + (i + 1 < nx_ ? i : i - 1), b = a + 1;
-                const double east =
-                    wrapLongitudeDeg(double(lon[b]) - double(lon[a])) * std::cos(double(lat[a]) * kRadPerDeg);
-                const double north = double(lat[b]) - double(lat[a]);
-                // cos and sin of atan2(north, east), turned by 180° where i runs westwards.
-                const double length = std::hypot(east, north), sign = p.iScansNegatively ? -1.0 : 1.0;
-                cosA[j * nx_ + i] = float(length > 0 ? sign * east / length : sign);
-                sinA[j * nx_ + i] = float(length > 0 ? sign * north / length : 0.0);
-            }
-        xAxisCos_ = resampler_->resample(cosA);
-        xAxisSin_ = resampler_->resample(sinA);
+        if (count < 0 || start + size_t(count) > n)
+            throw std::invalid_argument("reduced grid row lengths do not add up to the " + std::to_string(n) +
+                                        " points");
+        if (count == 0)
+            continue;
+        rowStart_.push_back(start);
+        rowPoints_.push_back(count);
+        start += size_t(count);
     }
+    if (start != n)
+        throw std::invalid_argument("reduced grid row lengths add up to " + std::to_string(start) + ", not the " +
+                                    std::to_string(n) + " points");
+    if (rowPoints_.size() < 2)
+        throw std::invalid_argument("reduced grid with fewer than 2 rows of points");
+    nx_ = size_t(*std::max_element(rowPoints_.begin(), rowPoints_.end()));
+    ny_ = rowPoints_.size();
+    const double lon0 = p.lonDeg[0];
+    for (size_t j = 0; j < ny_; ++j)
+    {
+        const double spacing = 360.0 / double(rowPoints_[j]);
+        const double first = p.lonDeg[rowStart_[j]];
+        const double last = p.lonDeg[rowStart_[j] + size_t(rowPoints_[j]) - 1];
+        if (std::abs(wrapLongitudeDeg(last - first - spacing * double(rowPoints_[j] - 1))) > 0.25 * spacing)
+            throw std::invalid_argument("reduced grid rows do not go all the way round (a sub-area)");
+        rowShift_.push_back(wrap360(lon0 - first) / spacing);
+    }
+    lat.resize(nx_ * ny_);
+    lon.resize(nx_ * ny_);
+    for (size_t j = 0; j < ny_; ++j)
+        for (size_t c = 0; c < nx_; ++c)
+        {
+            lat[j * nx_ + c] = float(p.latDeg[rowStart_[j]]);
+            lon[j * nx_ + c] = float(lon0 + double(c) * 360.0 / double(nx_));
+        }
+}
+
+void GribGrid::orderStructuredPoints(const GribGridPoints& p, std::vector<float>& lat, std::vector<float>& lon)
+{
+    const size_t n = p.latDeg.size();
+    if (p.ni * p.nj != n)
+        throw std::invalid_argument(std::to_string(p.ni) + " x " + std::to_string(p.nj) + " points declared, " +
+                                    std::to_string(n) + " located");
+    nx_ = p.ni;
+    ny_ = p.nj;
+    if (p.jPointsAreConsecutive || p.alternativeRowScanning)
+    {
+        order_.resize(n);
+        for (size_t s = 0; s < n; ++s)
+        {
+            size_t i = p.jPointsAreConsecutive ? s / ny_ : s % nx_;
+            size_t j = p.jPointsAreConsecutive ? s % ny_ : s / nx_;
+            if (p.alternativeRowScanning && !p.jPointsAreConsecutive && (j & 1u))
+                i = nx_ - 1 - i;
+            if (p.alternativeRowScanning && p.jPointsAreConsecutive && (i & 1u))
+                j = ny_ - 1 - j;
+            order_[j * nx_ + i] = uint32_t(s);
+        }
+    }
+    lat.resize(n);
+    lon.resize(n);
+    for (size_t k = 0; k < n; ++k)
+    {
+        const size_t s = order_.empty() ? k : order_[k];
+        lat[k] = float(p.latDeg[s]);
+        lon[k] = float(p.lonDeg[s]);
+    }
+}
+
+void GribGrid::makeXAxisDirections(const GribGridPoints& p, const std::vector<float>& lat,
+                                   const std::vector<float>& lon)
+{
+    // Direction of the grid's x axis (towards increasing i in the grid's own sense), for winds that
+    // GRIB gives relative to the grid (NCEP's Lambert and polar stereographic grids do).
+    std::vector<float> cosA(lat.size()), sinA(lat.size());
+    for (size_t j = 0; j < ny_; ++j)
+        for (size_t i = 0; i < nx_; ++i)
+        {
+            const size_t a = j * nx_ + (i + 1 < nx_ ? i : i - 1), b = a + 1;
+            const double east =
+                wrapLongitudeDeg(double(lon[b]) - double(lon[a])) * std::cos(double(lat[a]) * kRadPerDeg);
+            const double north = double(lat[b]) - double(lat[a]);
+            // cos and sin of atan2(north, east), turned by 180° where i runs westwards.
+            const double length = std::hypot(east, north), sign = p.iScansNegatively ? -1.0 : 1.0;
+            cosA[j * nx_ + i] = float(length > 0 ? sign * east / length : sign);
+            sinA[j * nx_ + i] = float(length > 0 ? sign * north / length : 0.0);
+        }
+    xAxisCos_ = resampler_->resample(cosA);
+    xAxisSin_ = resampler_->resample(sinA);
 }
 
 void GribGrid::makeEdgeWeights(const std::vector<float>& structuredLat, bool periodic)

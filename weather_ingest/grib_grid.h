@@ -71,6 +71,12 @@ class GribGrid
   private:
     std::vector<float> structured(const std::vector<double>& values) const;
     void makeEdgeWeights(const std::vector<float>& structuredLat, bool periodic);
+    /// Reduced grid: sets the row tables and nx_/ny_, and the expanded structured coordinates.
+    void expandReducedRows(const GribGridPoints& p, std::vector<float>& lat, std::vector<float>& lon);
+    /// ni x nj grid: sets nx_/ny_ and order_ (for other scanning modes) and the coordinates in (j, i) order.
+    void orderStructuredPoints(const GribGridPoints& p, std::vector<float>& lat, std::vector<float>& lon);
+    /// Sets xAxisCos_/xAxisSin_ for winds given relative to the grid.
+    void makeXAxisDirections(const GribGridPoints& p, const std::vector<float>& lat, const std::vector<float>& lon);
 
     std::string gridType_;
     std::string description_;

@@ -21,6 +21,8 @@ constexpr double kEcmwfLowTopPa = 80000.0;
 constexpr double kEcmwfMiddleTopPa = 45000.0;
 constexpr float kCloudyLevelFraction = 0.05f;  // a pressure level counts as cloudy from 5 % cover
 
+struct CoverRecords;
+
 class GribMapper
 {
 public:
@@ -116,6 +118,14 @@ private:
         return v;
     }
 
+    // The steps of run(), in order.
+    CoverRecords coverRecords() const;
+    void requireOneGrid(const GribRecord& anyCover);  ///< sets grid_; every record must be on it
+    void readLevelStacks(WeatherSnapshot& s);         ///< heights, winds, cloud cover per level; ground
+    void layerCoverage(const CoverRecords& c, WeatherSnapshot& s);
+    void surfaceAndTropopause(WeatherSnapshot& s);  ///< visibility, CAPE, tropopause altitude
+    std::vector<float> precipitation(WeatherSnapshot& s);  ///< returns the convective rate (mm/h)
+    void keepLevelFields(WeatherSnapshot& s);
     void heights(size_t layerIndex, LayerKind kind, GribRole bottomRole, GribRole topRole, WeatherSnapshot& s);
     void highLayer(WeatherSnapshot& s);
     bool ccBand(size_t cell, double pHighPa, double pLowPa, float& baseM, float& topM) const;
@@ -287,33 +297,42 @@ void GribMapper::highLayer(WeatherSnapshot& s)
     }
 }
 
-WeatherSnapshot GribMapper::run()
+/// The records that give each cloud layer's cover (null where absent); any is the first that exists.
+struct CoverRecords
 {
-    const GribRecord* low = find(GribRole::CoverLow);
-    const GribRecord* boundary = find(GribRole::CoverBoundaryLayer);
-    const GribRecord* middle = find(GribRole::CoverMiddle);
-    const GribRecord* convective = find(GribRole::CoverConvective);
-    const GribRecord* high = find(GribRole::CoverHigh);
-    const GribRecord* anyCover = low ? low : boundary ? boundary : middle ? middle : convective ? convective : high;
-    if (!anyCover)
+    const GribRecord *low, *boundary, *middle, *convective, *high, *any;
+};
+
+CoverRecords GribMapper::coverRecords() const
+{
+    CoverRecords c{};
+    c.low = find(GribRole::CoverLow);
+    c.boundary = find(GribRole::CoverBoundaryLayer);
+    c.middle = find(GribRole::CoverMiddle);
+    c.convective = find(GribRole::CoverConvective);
+    c.high = find(GribRole::CoverHigh);
+    c.any = c.low ? c.low : c.boundary ? c.boundary : c.middle ? c.middle : c.convective ? c.convective : c.high;
+    if (!c.any)
         throw IngestError(IngestErrorKind::MissingFields, records_.empty() ? "" : records_[0]->file, "", "",
                           "no cloud cover field: looked for tcc on the low/middle/high/convective/boundary-layer "
                           "cloud layers (GFS) and lcc/mcc/hcc (ECMWF)");
-    grid_ = anyCover->field.grid;
+    return c;
+}
+
+void GribMapper::requireOneGrid(const GribRecord& anyCover)
+{
+    grid_ = anyCover.field.grid;
     for (const GribRecord* r : records_)
         if (!sameGrid(r->field.grid, grid_))
             throw IngestError(IngestErrorKind::UnsupportedGrid, r->file, "message " + std::to_string(r->info.number),
                               r->info.label(),
                               "on a " + std::to_string(r->field.grid.nLon) + " x " + std::to_string(r->field.grid.nLat) +
-                                  " grid unlike " + anyCover->source + " (" + std::to_string(grid_.nLon) + " x " +
+                                  " grid unlike " + anyCover.source + " (" + std::to_string(grid_.nLon) + " x " +
                                   std::to_string(grid_.nLat) + "); give one grid per conversion");
+}
 
-    WeatherSnapshot s;
-    s.grid = grid_;
-    s.validTimeUnixS = anyCover->info.validTimeUnixS;
-    const size_t n = grid_.cellCount();
-    s.layers = makeEmptyLayers(n);
-
+void GribMapper::readLevelStacks(WeatherSnapshot& s)
+{
     heightM_ = stack(GribRole::LevelHeight, 1.0f);
     if (heightM_.empty())
         heightM_ = stack(GribRole::LevelGeopotential, float(1.0 / kStandardGravity));
@@ -337,34 +356,38 @@ WeatherSnapshot GribMapper::run()
         for (float& g : ground_)
             g = static_cast<float>(double(g) / kStandardGravity);
     }
+}
 
-    if (low || boundary)
+void GribMapper::layerCoverage(const CoverRecords& c, WeatherSnapshot& s)
+{
+    const size_t n = grid_.cellCount();
+    if (c.low || c.boundary)
     {
-        s.layers[kLowLayer].coverage = low ? coverage(low) : coverage(boundary);
-        s.provenance["layers/0/coverage"] = low ? low->source : boundary->source;
-        if (low && boundary)
+        s.layers[kLowLayer].coverage = c.low ? coverage(c.low) : coverage(c.boundary);
+        s.provenance["layers/0/coverage"] = c.low ? c.low->source : c.boundary->source;
+        if (c.low && c.boundary)
         {
-            const std::vector<float> bl = coverage(boundary);
+            const std::vector<float> bl = coverage(c.boundary);
             for (size_t i = 0; i < n; ++i)
                 s.layers[kLowLayer].coverage[i] = std::fmax(s.layers[kLowLayer].coverage[i], bl[i]);
-            s.provenance["layers/0/coverage"] += " max " + boundary->source;
+            s.provenance["layers/0/coverage"] += " max " + c.boundary->source;
         }
     }
-    if (middle)
+    if (c.middle)
     {
-        s.layers[kMiddleLayer].coverage = coverage(middle);
-        s.provenance["layers/1/coverage"] = middle->source;
+        s.layers[kMiddleLayer].coverage = coverage(c.middle);
+        s.provenance["layers/1/coverage"] = c.middle->source;
     }
-    if (convective)
+    if (c.convective)
     {
-        s.layers[kConvectiveLayer].coverage = coverage(convective);
-        s.provenance["layers/2/coverage"] = convective->source;
+        s.layers[kConvectiveLayer].coverage = coverage(c.convective);
+        s.provenance["layers/2/coverage"] = c.convective->source;
     }
-    heights(kLowLayer, LayerKind::Low, GribRole::PresLowBottom, GribRole::PresLowTop, s);
-    heights(kMiddleLayer, LayerKind::Middle, GribRole::PresMiddleBottom, GribRole::PresMiddleTop, s);
-    heights(kConvectiveLayer, LayerKind::Convective, GribRole::PresConvBottom, GribRole::PresConvTop, s);
-    highLayer(s);
+}
 
+void GribMapper::surfaceAndTropopause(WeatherSnapshot& s)
+{
+    const size_t n = grid_.cellCount();
     if (const GribRecord* vis = find(GribRole::Visibility))
         s.provenance["visibility"] = vis->source + " (read, not rendered yet)";
     if (const GribRecord* cape = find(GribRole::Cape))
@@ -385,7 +408,11 @@ WeatherSnapshot GribMapper::run()
             s.tropopauseAltitudeM[i] = pressureToAltitudeM(heightM_, i, p[i]);
         s.provenance["tropopauseAltitudeM"] = trpp->source + " (pressure -> altitude)";
     }
+}
 
+std::vector<float> GribMapper::precipitation(WeatherSnapshot& s)
+{
+    const size_t n = grid_.cellCount();
     std::string convSource, totalSource, largeSource;
     std::vector<float> conv = rateMmH(GribRole::ConvPrecipRate, GribRole::ConvPrecipAcc, convSource);
     std::vector<float> total = rateMmH(GribRole::PrecipRate, GribRole::TotalPrecipAcc, totalSource);
@@ -404,28 +431,51 @@ WeatherSnapshot GribMapper::run()
     attributePrecipitation(s, conv, large);
     s.provenance["precipitation/convective"] = conv.empty() ? "absent" : convSource;
     s.provenance["precipitation/largeScale"] = large.empty() ? "absent" : largeSource;
+    return conv;
+}
 
-    if (check_.options().keepLevelFields)
+void GribMapper::keepLevelFields(WeatherSnapshot& s)
+{
+    const std::pair<GribRole, const char*> kept[] = {{GribRole::LevelCloudMixingRatio, "cloudMixingRatio"},
+                                                     {GribRole::LevelCloudCover, "cloudCover"},
+                                                     {GribRole::LevelCloudLiquid, "cloudLiquidWater"},
+                                                     {GribRole::LevelCloudIce, "cloudIceWater"}};
+    for (const auto& [role, name] : kept)
     {
-        const std::pair<GribRole, const char*> kept[] = {{GribRole::LevelCloudMixingRatio, "cloudMixingRatio"},
-                                                         {GribRole::LevelCloudCover, "cloudCover"},
-                                                         {GribRole::LevelCloudLiquid, "cloudLiquidWater"},
-                                                         {GribRole::LevelCloudIce, "cloudIceWater"}};
-        for (const auto& [role, name] : kept)
-        {
-            LevelStack st = stack(role, 1.0f);
-            if (st.empty())
-                continue;
-            PressureLevelField f;
-            f.name = name;
-            f.units = role == GribRole::LevelCloudCover ? "1" : "kg/kg";
-            for (size_t k = 0; k < st.levelCount(); ++k)
-                f.pressurePa.push_back(static_cast<float>(st.pressurePa(k)));
-            f.values = st.concatenated();
-            s.provenance["levelFields/" + std::string(name)] = find(role)->source + " and other levels";
-            s.levelFields.push_back(std::move(f));
-        }
+        LevelStack st = stack(role, 1.0f);
+        if (st.empty())
+            continue;
+        PressureLevelField f;
+        f.name = name;
+        f.units = role == GribRole::LevelCloudCover ? "1" : "kg/kg";
+        for (size_t k = 0; k < st.levelCount(); ++k)
+            f.pressurePa.push_back(static_cast<float>(st.pressurePa(k)));
+        f.values = st.concatenated();
+        s.provenance["levelFields/" + std::string(name)] = find(role)->source + " and other levels";
+        s.levelFields.push_back(std::move(f));
     }
+}
+
+WeatherSnapshot GribMapper::run()
+{
+    const CoverRecords cover = coverRecords();
+    requireOneGrid(*cover.any);
+
+    WeatherSnapshot s;
+    s.grid = grid_;
+    s.validTimeUnixS = cover.any->info.validTimeUnixS;
+    s.layers = makeEmptyLayers(grid_.cellCount());
+
+    readLevelStacks(s);
+    layerCoverage(cover, s);
+    heights(kLowLayer, LayerKind::Low, GribRole::PresLowBottom, GribRole::PresLowTop, s);
+    heights(kMiddleLayer, LayerKind::Middle, GribRole::PresMiddleBottom, GribRole::PresMiddleTop, s);
+    heights(kConvectiveLayer, LayerKind::Convective, GribRole::PresConvBottom, GribRole::PresConvTop, s);
+    highLayer(s);
+    surfaceAndTropopause(s);
+    const std::vector<float> conv = precipitation(s);
+    if (check_.options().keepLevelFields)
+        keepLevelFields(s);
     assignCloudTypes(s, conv);
     s.provenance["types"] = "cloud-type rule table (README \"Cloud types\")";
     return s;

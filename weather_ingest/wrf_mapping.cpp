@@ -168,6 +168,288 @@ std::vector<std::vector<float>> ratesFromAccumulation(const std::vector<std::vec
     return rates;
 }
 
+/// Throws MissingFields naming the WRF variables that are absent.
+void requireWrfVariables(const NcFile& f)
+{
+    std::vector<std::string> missing;
+    for (const char* v : kWrfRequired)
+        if (!f.hasVariable(v))
+            missing.push_back(v);
+    if (missing.empty())
+        return;
+    std::string list;
+    for (const std::string& m : missing)
+        list += (list.empty() ? "" : ", ") + m;
+    const bool none = missing.size() == std::size(kWrfRequired);
+    throw IngestError(IngestErrorKind::MissingFields, f.path(), "", "",
+                      none ? "none of the variables of WRF output (Times, XLAT, XLONG, PH, PHB, QCLOUD) or of a "
+                             "supported model were found"
+                           : "WRF variables missing: " + list);
+}
+
+/// Unix times (s) of the WRF Times strings, one per QCLOUD time.
+std::vector<int64_t> wrfTimes(const NcFile& f, const WrfDims& d, const std::vector<std::string>& timeTexts)
+{
+    if (timeTexts.size() != d.nt)
+        throw IngestError(IngestErrorKind::Corrupt, f.path(), "variable Times", "", "one time per QCLOUD time needed");
+    std::vector<int64_t> times(d.nt);
+    for (size_t t = 0; t < d.nt; ++t)
+        if (!parseWrfTime(timeTexts[t], times[t]))
+            throw IngestError(IngestErrorKind::Corrupt, f.path(), "variable Times", "",
+                              "'" + timeTexts[t] + "' is not a time like 2005-08-28_12:00:00");
+    return times;
+}
+
+/// The resampler from XLAT/XLONG onto a regular grid; bad coordinates are BadValues.
+std::unique_ptr<CurvilinearResampler> makeResampler(const NcFile& f, const WrfDims& d, const std::vector<float>& lat,
+                                                    const std::vector<float>& lon)
+{
+    try
+    {
+        return std::make_unique<CurvilinearResampler>(lat, lon, d.ny, d.nx, kMaxSnapshotCells);
+    }
+    catch (const std::exception& e)
+    {
+        throw IngestError(IngestErrorKind::BadValues, f.path(), "variable XLAT/XLONG", "", e.what());
+    }
+}
+
+/// Precipitation rates (mm/h) per time and column, convective (RAINC + RAINSH) and large-scale (RAINNC).
+struct PrecipitationRates
+{
+    std::vector<std::vector<float>> convective, largeScale;
+};
+
+PrecipitationRates precipitationRates(const NcFile& f, const WrfReader& r, const WrfDims& d,
+                                      const std::vector<int64_t>& times, const ValueChecker& check)
+{
+    const size_t cols = d.ny * d.nx;
+    std::vector<std::vector<float>> accConv(d.nt), accLarge(d.nt);
+    const bool haveRain = f.hasVariable("RAINC") || f.hasVariable("RAINNC");
+    for (size_t t = 0; t < d.nt && haveRain; ++t)
+    {
+        accConv[t].assign(cols, 0.0f);
+        accLarge[t].assign(cols, 0.0f);
+        for (const char* v : {"RAINC", "RAINSH"})
+            if (f.hasVariable(v))
+            {
+                const std::vector<float> a = r.slab(v, t, 0, d.ny, d.nx);
+                for (size_t i = 0; i < cols; ++i)
+                    accConv[t][i] += std::isfinite(a[i]) ? a[i] : 0.0f;
+            }
+        if (f.hasVariable("RAINNC"))
+            accLarge[t] = r.slab("RAINNC", t, 0, d.ny, d.nx);
+    }
+    PrecipitationRates rates{ratesFromAccumulation(accConv, times), ratesFromAccumulation(accLarge, times)};
+    if (haveRain && d.nt < 2)
+        check.warn("one time only: precipitation rates cannot be derived from RAINC/RAINNC, set to 0");
+    return rates;
+}
+
+/// The 3D fields of one time; optional ones are empty when absent.
+struct WrfLevels
+{
+    std::vector<float> qc, qi, qr;  ///< mixing ratios (kg/kg): cloud water, ice, rain
+    std::vector<float> heightM;     ///< (PH + PHB) / g on the staggered (nz + 1) levels
+    std::vector<float> pp, pb, th;  ///< pressure perturbation and base (Pa), theta - 300 K
+    std::vector<float> u, v;        ///< grid-relative winds on the staggered columns (m/s)
+};
+
+WrfLevels readLevels(const WrfReader& r, const WrfDims& d, size_t t, const ValueChecker& check, const std::string& base)
+{
+    WrfLevels l;
+    l.qc = r.slab("QCLOUD", t, d.nz, d.ny, d.nx);
+    l.qi = r.slab("QICE", t, d.nz, d.ny, d.nx);
+    l.qr = r.slab("QRAIN", t, d.nz, d.ny, d.nx);
+    l.heightM = r.slab("PH", t, d.nz + 1, d.ny, d.nx);
+    const std::vector<float> phb = r.slab("PHB", t, d.nz + 1, d.ny, d.nx);
+    l.pp = r.slab("P", t, d.nz, d.ny, d.nx);
+    l.pb = r.slab("PB", t, d.nz, d.ny, d.nx);
+    l.th = r.slab("T", t, d.nz, d.ny, d.nx);
+    l.u = r.slab("U", t, d.nz, d.ny, d.nx + 1);
+    l.v = r.slab("V", t, d.nz, d.ny + 1, d.nx);
+    std::vector<float>& ph = l.heightM;
+    for (size_t i = 0; i < ph.size(); ++i)
+        ph[i] = float((double(ph[i]) + double(phb[i])) / kG);  // geopotential -> height (m)
+    // Index space as a pseudo-grid: messages then name (level * rows + row, column).
+    const LatLonGrid levelGrid{0, 0, 1, 1, uint32_t(ph.size() / d.nx), uint32_t(d.nx)};
+    check.range(ph, -1000.0f, 100000.0f, "PH+PHB", base + " variable PH/PHB", levelGrid);
+    return l;
+}
+
+/// The four bands' columns (low, middle, convective, high) and their running sums.
+struct BandSums
+{
+    BandColumns bands[4];
+    std::vector<float> waterPath[4];  ///< kg m^-2
+    std::vector<float> windCount[4];  ///< levels whose wind was added
+
+    explicit BandSums(size_t cols)
+    {
+        for (BandColumns& b : bands)
+            b.resize(cols);
+        for (size_t k = 0; k < 4; ++k)
+        {
+            waterPath[k].assign(cols, 0.0f);
+            windCount[k].assign(cols, 0.0f);
+        }
+    }
+};
+
+/// Rotation from grid-relative to earth-relative winds, per column (empty: none).
+struct WindRotation
+{
+    std::vector<float> cosA, sinA;
+};
+
+/// Adds level kk of column c (row j, column i) to its band: water path, base, top and earth-relative wind.
+void addCloudyLevel(const WrfLevels& l, const WrfDims& d, const WindRotation& rot, size_t c, size_t kk, bool deep,
+                    BandSums& sums)
+{
+    const size_t cols = d.ny * d.nx;
+    const size_t j = c / d.nx, i = c % d.nx;
+    const auto at = [&](size_t k) { return k * cols + c; };
+    const double zBot = l.heightM[at(kk)], zTop = l.heightM[at(kk + 1)], zMid = 0.5 * (zBot + zTop);
+    const size_t band = deep ? 2 : zMid < kLowTopM ? 0 : zMid < kMiddleTopM ? 1 : 3;
+    double pPa = standardAtmospherePressurePa(zMid), tK = 0;
+    if (!l.pp.empty() && !l.pb.empty())
+        pPa = double(l.pp[at(kk)]) + double(l.pb[at(kk)]);
+    tK = l.th.empty() ? 288.15 - 0.0065 * std::min(zMid, 11000.0)
+                      : (double(l.th[at(kk)]) + kTheta0K) * std::pow(pPa / kP0Pa, kRdOverCp);
+    const double rho = pPa / (kRd * tK);
+    const double q = double(l.qc[at(kk)]) + (l.qi.empty() ? 0.0 : double(l.qi[at(kk)])) +
+                     (l.qr.empty() || !std::isfinite(l.qr[at(kk)]) ? 0.0 : double(l.qr[at(kk)]));
+    sums.waterPath[band][c] += float(rho * q * (zTop - zBot));
+    BandColumns& b = sums.bands[band];
+    b.baseM[c] = std::isnan(b.baseM[c]) ? float(zBot) : std::min(b.baseM[c], float(zBot));
+    b.topM[c] = std::isnan(b.topM[c]) ? float(zTop) : std::max(b.topM[c], float(zTop));
+    if (!l.u.empty() && !l.v.empty())
+    {
+        const std::vector<float>& u = l.u;
+        const std::vector<float>& v = l.v;
+        const float ug = 0.5f * (u[(kk * d.ny + j) * (d.nx + 1) + i] + u[(kk * d.ny + j) * (d.nx + 1) + i + 1]);
+        const float vg = 0.5f * (v[(kk * (d.ny + 1) + j) * d.nx + i] + v[(kk * (d.ny + 1) + j + 1) * d.nx + i]);
+        const float ca = rot.cosA.empty() ? 1.0f : rot.cosA[c], sa = rot.sinA.empty() ? 0.0f : rot.sinA[c];
+        b.windU[c] += ug * ca - vg * sa;
+        b.windV[c] += vg * ca + ug * sa;
+        sums.windCount[band][c] += 1.0f;
+    }
+}
+
+/// Walks column c's runs of cloudy levels (a run deep enough from low enough is convective), then turns
+/// each band's water path into coverage and its wind sum into a mean.
+void integrateColumn(const WrfLevels& l, const WrfDims& d, const WindRotation& rot, size_t c, BandSums& sums)
+{
+    const size_t cols = d.ny * d.nx;
+    const auto at = [&](size_t k) { return k * cols + c; };
+    const auto cond = [&](size_t kk) {
+        const float q = l.qc[at(kk)] + (l.qi.empty() ? 0.0f : l.qi[at(kk)]);
+        return std::isfinite(q) && q >= kCloudyMixingRatio;
+    };
+    size_t k = 0;
+    while (k < d.nz)
+    {
+        if (!cond(k))
+        {
+            ++k;
+            continue;
+        }
+        size_t end = k;
+        while (end + 1 < d.nz && cond(end + 1))
+            ++end;
+        const double runBase = l.heightM[at(k)], runTop = l.heightM[at(end + 1)];
+        const bool deep = runBase < kDeepBaseBelowM && runTop - runBase >= kDeepMinDepthM;
+        for (size_t kk = k; kk <= end; ++kk)
+            addCloudyLevel(l, d, rot, c, kk, deep, sums);
+        k = end + 1;
+    }
+    for (size_t band = 0; band < 4; ++band)
+    {
+        BandColumns& b = sums.bands[band];
+        b.coverage[c] = float(1.0 - std::exp(-double(sums.waterPath[band][c]) / kWaterPathScaleKgM2));
+        if (sums.windCount[band][c] > 0)
+        {
+            b.windU[c] /= sums.windCount[band][c];
+            b.windV[c] /= sums.windCount[band][c];
+        }
+    }
+}
+
+std::vector<float> zeroNan(std::vector<float> x)
+{
+    for (float& e : x)
+        e = std::isfinite(e) ? e : 0.0f;
+    return x;
+}
+
+/// What the snapshot of one time is assembled from.
+struct WrfTimeInputs
+{
+    const CurvilinearResampler& resampler;
+    const BandColumns* bands;  ///< low, middle, convective, high
+    int64_t validTimeUnixS;
+    const std::string& timeText;
+    const std::string& base;  ///< the file's name, for provenance
+    const std::vector<float>& convRate;
+    const std::vector<float>& largeRate;
+    bool haveWind;
+};
+
+/// The three volumetric layers (low, middle, convective) resampled, checked and attributed.
+void resampleLayers(const WrfTimeInputs& in, const ValueChecker& check, WeatherSnapshot& s)
+{
+    const CurvilinearResampler& resampler = in.resampler;
+    for (size_t li = 0; li < 3; ++li)
+    {
+        CloudLayerFields& l = s.layers[li];
+        l.coverage = resampler.resample(in.bands[li].coverage);
+        l.baseAltitudeM = resampler.resample(in.bands[li].baseM);
+        l.topAltitudeM = resampler.resample(in.bands[li].topM);
+        l.windEastMS = zeroNan(resampler.resample(in.bands[li].windU));
+        l.windNorthMS = zeroNan(resampler.resample(in.bands[li].windV));
+        check.baseBelowTop(l.baseAltitudeM, l.topAltitudeM, l.name + " base vs top", in.base, s.grid);
+        const std::string p = "layers/" + std::to_string(li) + "/";
+        s.provenance[p + "coverage"] = in.base + " QCLOUD+QICE+QRAIN water path, time " + in.timeText;
+        s.provenance[p + "baseAltitudeM"] = in.base + " PH+PHB at the lowest cloudy level";
+        s.provenance[p + "topAltitudeM"] = in.base + " PH+PHB at the highest cloudy level";
+    }
+}
+
+WeatherSnapshot snapshotOfTime(const WrfTimeInputs& in, const ValueChecker& check)
+{
+    const CurvilinearResampler& resampler = in.resampler;
+    WeatherSnapshot s;
+    s.grid = resampler.grid();
+    s.validTimeUnixS = in.validTimeUnixS;
+    const size_t n = s.grid.cellCount();
+    s.layers = makeEmptyLayers(n);
+    resampleLayers(in, check, s);
+    const BandColumns& high = in.bands[3];
+    s.high.coverage = resampler.resample(high.coverage);
+    s.high.altitudeM.resize(n);
+    const std::vector<float> hb = resampler.resample(high.baseM), ht = resampler.resample(high.topM);
+    for (size_t i = 0; i < n; ++i)
+        s.high.altitudeM[i] = 0.5f * (hb[i] + ht[i]);
+    s.high.windEastMS = zeroNan(resampler.resample(high.windU));
+    s.high.windNorthMS = zeroNan(resampler.resample(high.windV));
+    s.provenance["high/coverage"] = in.base + " water path of cloudy levels above 6 km";
+    std::vector<float> conv, large;
+    if (!in.convRate.empty())
+    {
+        conv = zeroNan(resampler.resample(in.convRate));
+        large = zeroNan(resampler.resample(in.largeRate));
+    }
+    attributePrecipitation(s, conv, large);
+    s.provenance["precipitation/convective"] = conv.empty() ? "absent" : in.base + " d(RAINC+RAINSH)/dt";
+    s.provenance["precipitation/largeScale"] = large.empty() ? "absent" : in.base + " d(RAINNC)/dt";
+    s.provenance["wind"] = !in.haveWind ? "absent: 0 m/s" : in.base + " U/V de-staggered, earth-relative";
+    s.provenance["grid"] = in.base + " XLAT/XLONG resampled to a regular grid (" +
+                           std::to_string(int(resampler.coveredFraction() * 100)) + " % inside the domain)";
+    assignCloudTypes(s, conv);
+    s.provenance["types"] = "cloud-type rule table (README \"Cloud types\")";
+    return s;
+}
+
 }  // namespace
 
 bool parseWrfTime(const std::string& text, int64_t& unixS)
@@ -185,21 +467,7 @@ bool parseWrfTime(const std::string& text, int64_t& unixS)
 std::vector<WeatherSnapshot> mapWrfFile(const NcFile& f, const MappingOptions& options,
                                         std::vector<std::string>& warnings, const ProgressFn& progress)
 {
-    std::vector<std::string> missing;
-    for (const char* v : kWrfRequired)
-        if (!f.hasVariable(v))
-            missing.push_back(v);
-    if (!missing.empty())
-    {
-        std::string list;
-        for (const std::string& m : missing)
-            list += (list.empty() ? "" : ", ") + m;
-        const bool none = missing.size() == std::size(kWrfRequired);
-        throw IngestError(IngestErrorKind::MissingFields, f.path(), "", "",
-                          none ? "none of the variables of WRF output (Times, XLAT, XLONG, PH, PHB, QCLOUD) or of a "
-                                 "supported model were found"
-                               : "WRF variables missing: " + list);
-    }
+    requireWrfVariables(f);
     const WrfDims d = checkDims(f);
     const WrfReader r(f, d);
     const size_t cols = d.ny * d.nx;
@@ -207,187 +475,26 @@ std::vector<WeatherSnapshot> mapWrfFile(const NcFile& f, const MappingOptions& o
     const ValueChecker check(options, warnings, f.path());
 
     const std::vector<std::string> timeTexts = f.readStrings("Times");
-    if (timeTexts.size() != d.nt)
-        throw IngestError(IngestErrorKind::Corrupt, f.path(), "variable Times", "", "one time per QCLOUD time needed");
-    std::vector<int64_t> times(d.nt);
-    for (size_t t = 0; t < d.nt; ++t)
-        if (!parseWrfTime(timeTexts[t], times[t]))
-            throw IngestError(IngestErrorKind::Corrupt, f.path(), "variable Times", "",
-                              "'" + timeTexts[t] + "' is not a time like 2005-08-28_12:00:00");
-
+    const std::vector<int64_t> times = wrfTimes(f, d, timeTexts);
     const std::vector<float> lat = r.coordinate("XLAT");
     const std::vector<float> lon = r.coordinate("XLONG");
-    std::unique_ptr<CurvilinearResampler> resampler;
-    try
-    {
-        resampler = std::make_unique<CurvilinearResampler>(lat, lon, d.ny, d.nx, kMaxSnapshotCells);
-    }
-    catch (const std::exception& e)
-    {
-        throw IngestError(IngestErrorKind::BadValues, f.path(), "variable XLAT/XLONG", "", e.what());
-    }
-    std::vector<float> cosA, sinA;
-    windRotation(f, r, d, lon, cosA, sinA);
-
-    std::vector<std::vector<float>> accConv(d.nt), accLarge(d.nt);
-    const bool haveRain = f.hasVariable("RAINC") || f.hasVariable("RAINNC");
-    for (size_t t = 0; t < d.nt && haveRain; ++t)
-    {
-        accConv[t].assign(cols, 0.0f);
-        accLarge[t].assign(cols, 0.0f);
-        for (const char* v : {"RAINC", "RAINSH"})
-            if (f.hasVariable(v))
-            {
-                const std::vector<float> a = r.slab(v, t, 0, d.ny, d.nx);
-                for (size_t i = 0; i < cols; ++i)
-                    accConv[t][i] += std::isfinite(a[i]) ? a[i] : 0.0f;
-            }
-        if (f.hasVariable("RAINNC"))
-            accLarge[t] = r.slab("RAINNC", t, 0, d.ny, d.nx);
-    }
-    const std::vector<std::vector<float>> convRate = ratesFromAccumulation(accConv, times);
-    const std::vector<std::vector<float>> largeRate = ratesFromAccumulation(accLarge, times);
-    if (haveRain && d.nt < 2)
-        check.warn("one time only: precipitation rates cannot be derived from RAINC/RAINNC, set to 0");
+    const std::unique_ptr<CurvilinearResampler> resampler = makeResampler(f, d, lat, lon);
+    WindRotation rotation;
+    windRotation(f, r, d, lon, rotation.cosA, rotation.sinA);
+    const PrecipitationRates rates = precipitationRates(f, r, d, times, check);
 
     std::vector<WeatherSnapshot> out;
     for (size_t t = 0; t < d.nt; ++t)
     {
         if (progress)
             progress(double(t) / double(d.nt), "WRF time " + timeTexts[t]);
-        const std::vector<float> qc = r.slab("QCLOUD", t, d.nz, d.ny, d.nx);
-        const std::vector<float> qi = r.slab("QICE", t, d.nz, d.ny, d.nx);
-        const std::vector<float> qr = r.slab("QRAIN", t, d.nz, d.ny, d.nx);
-        std::vector<float> ph = r.slab("PH", t, d.nz + 1, d.ny, d.nx);
-        const std::vector<float> phb = r.slab("PHB", t, d.nz + 1, d.ny, d.nx);
-        const std::vector<float> pp = r.slab("P", t, d.nz, d.ny, d.nx);
-        const std::vector<float> pb = r.slab("PB", t, d.nz, d.ny, d.nx);
-        const std::vector<float> th = r.slab("T", t, d.nz, d.ny, d.nx);
-        const std::vector<float> u = r.slab("U", t, d.nz, d.ny, d.nx + 1);
-        const std::vector<float> v = r.slab("V", t, d.nz, d.ny + 1, d.nx);
-        for (size_t i = 0; i < ph.size(); ++i)
-            ph[i] = float((double(ph[i]) + double(phb[i])) / kG);  // geopotential -> height (m)
-        // Index space as a pseudo-grid: messages then name (level * rows + row, column).
-        const LatLonGrid levelGrid{0, 0, 1, 1, uint32_t(ph.size() / d.nx), uint32_t(d.nx)};
-        check.range(ph, -1000.0f, 100000.0f, "PH+PHB", base + " variable PH/PHB", levelGrid);
-
-        BandColumns bands[4];  // low, middle, convective, high
-        for (BandColumns& b : bands)
-            b.resize(cols);
-        std::vector<float> waterPath[4];
-        std::vector<float> windCount[4];
-        for (size_t k = 0; k < 4; ++k)
-        {
-            waterPath[k].assign(cols, 0.0f);
-            windCount[k].assign(cols, 0.0f);
-        }
+        const WrfLevels levels = readLevels(r, d, t, check, base);
+        BandSums sums(cols);
         for (size_t c = 0; c < cols; ++c)
-        {
-            const size_t j = c / d.nx, i = c % d.nx;
-            const auto at = [&](size_t k) { return k * cols + c; };
-            size_t k = 0;
-            while (k < d.nz)
-            {
-                const auto cond = [&](size_t kk) {
-                    const float q = qc[at(kk)] + (qi.empty() ? 0.0f : qi[at(kk)]);
-                    return std::isfinite(q) && q >= kCloudyMixingRatio;
-                };
-                if (!cond(k))
-                {
-                    ++k;
-                    continue;
-                }
-                size_t end = k;
-                while (end + 1 < d.nz && cond(end + 1))
-                    ++end;
-                const double runBase = ph[at(k)], runTop = ph[at(end + 1)];
-                const bool deep = runBase < kDeepBaseBelowM && runTop - runBase >= kDeepMinDepthM;
-                for (size_t kk = k; kk <= end; ++kk)
-                {
-                    const double zBot = ph[at(kk)], zTop = ph[at(kk + 1)], zMid = 0.5 * (zBot + zTop);
-                    const size_t band = deep ? 2 : zMid < kLowTopM ? 0 : zMid < kMiddleTopM ? 1 : 3;
-                    double pPa = standardAtmospherePressurePa(zMid), tK = 0;
-                    if (!pp.empty() && !pb.empty())
-                        pPa = double(pp[at(kk)]) + double(pb[at(kk)]);
-                    tK = th.empty() ? 288.15 - 0.0065 * std::min(zMid, 11000.0)
-                                    : (double(th[at(kk)]) + kTheta0K) * std::pow(pPa / kP0Pa, kRdOverCp);
-                    const double rho = pPa / (kRd * tK);
-                    const double q = double(qc[at(kk)]) + (qi.empty() ? 0.0 : double(qi[at(kk)])) +
-                                     (qr.empty() || !std::isfinite(qr[at(kk)]) ? 0.0 : double(qr[at(kk)]));
-                    waterPath[band][c] += float(rho * q * (zTop - zBot));
-                    BandColumns& b = bands[band];
-                    b.baseM[c] = std::isnan(b.baseM[c]) ? float(zBot) : std::min(b.baseM[c], float(zBot));
-                    b.topM[c] = std::isnan(b.topM[c]) ? float(zTop) : std::max(b.topM[c], float(zTop));
-                    if (!u.empty() && !v.empty())
-                    {
-                        const float ug = 0.5f * (u[(kk * d.ny + j) * (d.nx + 1) + i] + u[(kk * d.ny + j) * (d.nx + 1) + i + 1]);
-                        const float vg = 0.5f * (v[(kk * (d.ny + 1) + j) * d.nx + i] + v[(kk * (d.ny + 1) + j + 1) * d.nx + i]);
-                        const float ca = cosA.empty() ? 1.0f : cosA[c], sa = sinA.empty() ? 0.0f : sinA[c];
-                        b.windU[c] += ug * ca - vg * sa;
-                        b.windV[c] += vg * ca + ug * sa;
-                        windCount[band][c] += 1.0f;
-                    }
-                }
-                k = end + 1;
-            }
-            for (size_t band = 0; band < 4; ++band)
-            {
-                bands[band].coverage[c] = float(1.0 - std::exp(-double(waterPath[band][c]) / kWaterPathScaleKgM2));
-                if (windCount[band][c] > 0)
-                {
-                    bands[band].windU[c] /= windCount[band][c];
-                    bands[band].windV[c] /= windCount[band][c];
-                }
-            }
-        }
-
-        WeatherSnapshot s;
-        s.grid = resampler->grid();
-        s.validTimeUnixS = times[t];
-        const size_t n = s.grid.cellCount();
-        s.layers = makeEmptyLayers(n);
-        const auto zeroNan = [](std::vector<float> x) {
-            for (float& e : x)
-                e = std::isfinite(e) ? e : 0.0f;
-            return x;
-        };
-        for (size_t li = 0; li < 3; ++li)
-        {
-            CloudLayerFields& l = s.layers[li];
-            l.coverage = resampler->resample(bands[li].coverage);
-            l.baseAltitudeM = resampler->resample(bands[li].baseM);
-            l.topAltitudeM = resampler->resample(bands[li].topM);
-            l.windEastMS = zeroNan(resampler->resample(bands[li].windU));
-            l.windNorthMS = zeroNan(resampler->resample(bands[li].windV));
-            check.baseBelowTop(l.baseAltitudeM, l.topAltitudeM, l.name + " base vs top", base, s.grid);
-            const std::string p = "layers/" + std::to_string(li) + "/";
-            s.provenance[p + "coverage"] = base + " QCLOUD+QICE+QRAIN water path, time " + timeTexts[t];
-            s.provenance[p + "baseAltitudeM"] = base + " PH+PHB at the lowest cloudy level";
-            s.provenance[p + "topAltitudeM"] = base + " PH+PHB at the highest cloudy level";
-        }
-        s.high.coverage = resampler->resample(bands[3].coverage);
-        s.high.altitudeM.resize(n);
-        const std::vector<float> hb = resampler->resample(bands[3].baseM), ht = resampler->resample(bands[3].topM);
-        for (size_t i = 0; i < n; ++i)
-            s.high.altitudeM[i] = 0.5f * (hb[i] + ht[i]);
-        s.high.windEastMS = zeroNan(resampler->resample(bands[3].windU));
-        s.high.windNorthMS = zeroNan(resampler->resample(bands[3].windV));
-        s.provenance["high/coverage"] = base + " water path of cloudy levels above 6 km";
-        std::vector<float> conv, large;
-        if (!convRate[t].empty())
-        {
-            conv = zeroNan(resampler->resample(convRate[t]));
-            large = zeroNan(resampler->resample(largeRate[t]));
-        }
-        attributePrecipitation(s, conv, large);
-        s.provenance["precipitation/convective"] = conv.empty() ? "absent" : base + " d(RAINC+RAINSH)/dt";
-        s.provenance["precipitation/largeScale"] = large.empty() ? "absent" : base + " d(RAINNC)/dt";
-        s.provenance["wind"] = u.empty() ? "absent: 0 m/s" : base + " U/V de-staggered, earth-relative";
-        s.provenance["grid"] = base + " XLAT/XLONG resampled to a regular grid (" +
-                               std::to_string(int(resampler->coveredFraction() * 100)) + " % inside the domain)";
-        assignCloudTypes(s, conv);
-        s.provenance["types"] = "cloud-type rule table (README \"Cloud types\")";
-        out.push_back(std::move(s));
+            integrateColumn(levels, d, rotation, c, sums);
+        const WrfTimeInputs inputs{*resampler,         sums.bands,           times[t],          timeTexts[t], base,
+                                   rates.convective[t], rates.largeScale[t], !levels.u.empty()};
+        out.push_back(snapshotOfTime(inputs, check));
     }
     if (progress)
         progress(1.0, "WRF done");

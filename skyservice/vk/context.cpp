@@ -97,9 +97,8 @@ std::string missingRequirements(VkPhysicalDevice pd)
     return "a compute queue";
 }
 
-}  // namespace
-
-SkyStatus createContext(Context& ctx, const ContextOptions& options)
+// The instance, with the validation layer when asked for and debug utils when the loader has them.
+SkyStatus createInstance(Context& ctx, const ContextOptions& options)
 {
     uint32_t loaderVersion = 0;
     if (vkEnumerateInstanceVersion(&loaderVersion) != VK_SUCCESS || loaderVersion < VK_API_VERSION_1_3)
@@ -138,22 +137,29 @@ SkyStatus createContext(Context& ctx, const ContextOptions& options)
                                       "): no working Vulkan driver? (apt-get install mesa-vulkan-drivers)",
                                   r);
     }
+    return SkyStatus::success();
+}
 
-    if (options.validation && ctx.debugUtils)
-    {
-        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-            vkGetInstanceProcAddr(ctx.instance, "vkCreateDebugUtilsMessengerEXT"));
-        VkDebugUtilsMessengerCreateInfoEXT info = {VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-        info.messageSeverity =
-            VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-        info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                           VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-        info.pfnUserCallback = debugCallback;
-        info.pUserData = &ctx;
-        if (create)
-            VK_CHECK(create(ctx.instance, &info, nullptr, &ctx.messenger));
-    }
+// Routes validation warnings and errors to debugCallback, which counts them in ctx.
+void createDebugMessenger(Context& ctx)
+{
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(ctx.instance, "vkCreateDebugUtilsMessengerEXT"));
+    VkDebugUtilsMessengerCreateInfoEXT info = {VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    info.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    info.pfnUserCallback = debugCallback;
+    info.pUserData = &ctx;
+    if (create)
+        VK_CHECK(create(ctx.instance, &info, nullptr, &ctx.messenger));
+}
 
+// Selection: an explicit index or name, else the best-ranked device that has what we need. Sets
+// ctx.physicalDevice; on failure destroys what ctx holds and says why each device was refused.
+SkyStatus choosePhysicalDevice(Context& ctx, const ContextOptions& options)
+{
     uint32_t count = 0;
     vkEnumeratePhysicalDevices(ctx.instance, &count, nullptr);
     std::vector<VkPhysicalDevice> devices(count);
@@ -165,7 +171,6 @@ SkyStatus createContext(Context& ctx, const ContextOptions& options)
                                   VK_ERROR_INCOMPATIBLE_DRIVER);
     }
 
-    // Selection: an explicit index or name, else the best-ranked device that has what we need.
     int chosen = -1;
     std::string why;
     const std::string& sel = options.deviceSelector;
@@ -202,6 +207,13 @@ SkyStatus createContext(Context& ctx, const ContextOptions& options)
         return SkyStatus::failure("no Vulkan device has what the renderer needs:" + why, VK_ERROR_FEATURE_NOT_PRESENT);
     }
     ctx.physicalDevice = devices[uint32_t(chosen)];
+    return SkyStatus::success();
+}
+
+// The chosen device's properties, driver, identity (for the frame-export UUID match) and compute
+// queue family.
+void readDeviceProperties(Context& ctx, const ContextOptions& options)
+{
     vkGetPhysicalDeviceProperties(ctx.physicalDevice, &ctx.properties);
     vkGetPhysicalDeviceMemoryProperties(ctx.physicalDevice, &ctx.memoryProperties);
     ctx.deviceName = ctx.properties.deviceName;
@@ -231,42 +243,49 @@ SkyStatus createContext(Context& ctx, const ContextOptions& options)
                 ctx.timestampPeriodNs = double(ctx.properties.limits.timestampPeriod);
             break;
         }
+}
 
-    float priority = 1.0f;
-    VkDeviceQueueCreateInfo queueInfo = {VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    queueInfo.queueFamilyIndex = ctx.queueFamily;
-    queueInfo.queueCount = 1;
-    queueInfo.pQueuePriorities = &priority;
+// The features and extensions the device is created with. The structs point at each other through
+// pNext, so the chain is built in place and never copied.
+struct DeviceFeatureChain
+{
+    DeviceFeatureChain() = default;
+    DeviceFeatureChain(const DeviceFeatureChain&) = delete;
+    DeviceFeatureChain& operator=(const DeviceFeatureChain&) = delete;
 
-    std::vector<const char*> deviceExtensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    std::vector<const char*> extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     VkPhysicalDeviceVulkan13Features features13 = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    features13.synchronization2 = VK_TRUE;
-    features13.maintenance4 = VK_TRUE;  // glslang's SPIR-V 1.6 uses LocalSizeId, which needs it
     VkPhysicalDeviceVulkan12Features features12 = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    features12.pNext = &features13;
-    features12.hostQueryReset = VK_TRUE;
     VkPhysicalDeviceFeatures2 features = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-    features.pNext = &features12;
-    // Optional frame-export support (frame_export.h): external memory, timeline semaphores, and
-    // exportable semaphores when the device has them; a device without them still renders.
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executableFeatures = {
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+    bool pipelineStatistics = false;
+};
+
+// Optional frame-export support (frame_export.h): external memory, timeline semaphores, and
+// exportable semaphores when the device has them; a device without them still renders.
+void chooseExportFeatures(Context& ctx, DeviceFeatureChain& chain)
+{
     {
         VkPhysicalDeviceVulkan12Features supported12 = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
         VkPhysicalDeviceFeatures2 supported = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
         supported.pNext = &supported12;
         vkGetPhysicalDeviceFeatures2(ctx.physicalDevice, &supported);
         ctx.timelineSemaphore = supported12.timelineSemaphore == VK_TRUE;
-        features12.timelineSemaphore = supported12.timelineSemaphore;
+        chain.features12.timelineSemaphore = supported12.timelineSemaphore;
     }
     ctx.externalMemoryFd = hasDeviceExtension(ctx.physicalDevice, VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
     if (ctx.externalMemoryFd)
-        deviceExtensions.push_back(VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
+        chain.extensions.push_back(VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
     ctx.externalSemaphoreFd =
         ctx.timelineSemaphore && hasDeviceExtension(ctx.physicalDevice, VK_KHR_EXTERNAL_SEMAPHORE_FD_EXTENSION_NAME);
     if (ctx.externalSemaphoreFd)
-        deviceExtensions.push_back(VK_KHR_EXTERNAL_SEMAPHORE_FD_EXTENSION_NAME);
+        chain.extensions.push_back(VK_KHR_EXTERNAL_SEMAPHORE_FD_EXTENSION_NAME);
+}
 
-    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executableFeatures = {
-        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+// Pipeline executable statistics (register counts in the bench), only when asked for and offered.
+void choosePipelineStatistics(const Context& ctx, const ContextOptions& options, DeviceFeatureChain& chain)
+{
     bool pipelineStatistics = options.pipelineStatistics &&
                               hasDeviceExtension(ctx.physicalDevice, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
     if (pipelineStatistics)
@@ -280,27 +299,18 @@ SkyStatus createContext(Context& ctx, const ContextOptions& options)
     }
     if (pipelineStatistics)
     {
-        deviceExtensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
-        executableFeatures.pipelineExecutableInfo = VK_TRUE;
-        executableFeatures.pNext = features13.pNext;
-        features13.pNext = &executableFeatures;
+        chain.extensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+        chain.executableFeatures.pipelineExecutableInfo = VK_TRUE;
+        chain.executableFeatures.pNext = chain.features13.pNext;
+        chain.features13.pNext = &chain.executableFeatures;
     }
+    chain.pipelineStatistics = pipelineStatistics;
+}
 
-    VkDeviceCreateInfo deviceInfo = {VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-    deviceInfo.pNext = &features;
-    deviceInfo.queueCreateInfoCount = 1;
-    deviceInfo.pQueueCreateInfos = &queueInfo;
-    deviceInfo.enabledExtensionCount = uint32_t(deviceExtensions.size());
-    deviceInfo.ppEnabledExtensionNames = deviceExtensions.data();
-    r = vkCreateDevice(ctx.physicalDevice, &deviceInfo, nullptr, &ctx.device);
-    if (r != VK_SUCCESS)
-    {
-        ctx.device = VK_NULL_HANDLE;
-        std::string name = ctx.deviceName;
-        destroyContext(ctx);
-        return SkyStatus::failure("cannot create the Vulkan device on " + name + ": " + vkResultName(r), r);
-    }
-    vkGetDeviceQueue(ctx.device, ctx.queueFamily, 0, &ctx.queue);
+// The extension entry points the context uses; an extension whose functions are missing counts as
+// absent.
+void loadDeviceFunctions(Context& ctx, bool pipelineStatistics)
+{
     ctx.cmdPushDescriptorSet =
         reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(ctx.device, "vkCmdPushDescriptorSetKHR"));
     if (ctx.externalMemoryFd)
@@ -319,6 +329,61 @@ SkyStatus createContext(Context& ctx, const ContextOptions& options)
     }
     ctx.externalMemoryFd = ctx.getMemoryFd != nullptr;
     ctx.externalSemaphoreFd = ctx.getSemaphoreFd != nullptr;
+}
+
+// The logical device with one compute queue; on failure destroys what ctx holds.
+SkyStatus createLogicalDevice(Context& ctx, const ContextOptions& options)
+{
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo queueInfo = {VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    queueInfo.queueFamilyIndex = ctx.queueFamily;
+    queueInfo.queueCount = 1;
+    queueInfo.pQueuePriorities = &priority;
+
+    DeviceFeatureChain chain;
+    chain.features13.synchronization2 = VK_TRUE;
+    chain.features13.maintenance4 = VK_TRUE;  // glslang's SPIR-V 1.6 uses LocalSizeId, which needs it
+    chain.features12.pNext = &chain.features13;
+    chain.features12.hostQueryReset = VK_TRUE;
+    chain.features.pNext = &chain.features12;
+    chooseExportFeatures(ctx, chain);
+    choosePipelineStatistics(ctx, options, chain);
+
+    VkDeviceCreateInfo deviceInfo = {VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    deviceInfo.pNext = &chain.features;
+    deviceInfo.queueCreateInfoCount = 1;
+    deviceInfo.pQueueCreateInfos = &queueInfo;
+    deviceInfo.enabledExtensionCount = uint32_t(chain.extensions.size());
+    deviceInfo.ppEnabledExtensionNames = chain.extensions.data();
+    VkResult r = vkCreateDevice(ctx.physicalDevice, &deviceInfo, nullptr, &ctx.device);
+    if (r != VK_SUCCESS)
+    {
+        ctx.device = VK_NULL_HANDLE;
+        std::string name = ctx.deviceName;
+        destroyContext(ctx);
+        return SkyStatus::failure("cannot create the Vulkan device on " + name + ": " + vkResultName(r), r);
+    }
+    vkGetDeviceQueue(ctx.device, ctx.queueFamily, 0, &ctx.queue);
+    loadDeviceFunctions(ctx, chain.pipelineStatistics);
+    return SkyStatus::success();
+}
+
+}  // namespace
+
+SkyStatus createContext(Context& ctx, const ContextOptions& options)
+{
+    SkyStatus status = createInstance(ctx, options);
+    if (!status.ok())
+        return status;
+    if (options.validation && ctx.debugUtils)
+        createDebugMessenger(ctx);
+    status = choosePhysicalDevice(ctx, options);
+    if (!status.ok())
+        return status;
+    readDeviceProperties(ctx, options);
+    status = createLogicalDevice(ctx, options);
+    if (!status.ok())
+        return status;
     if (!options.quiet)
         std::fprintf(stderr, "skyservice: Vulkan device %s (%s)\n", ctx.deviceName.c_str(), ctx.driverInfo.c_str());
     return SkyStatus::success();
