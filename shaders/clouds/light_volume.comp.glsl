@@ -46,8 +46,11 @@ void main()
     ivec3 texel = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(texel, ivec3(LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS))))
         return;
-    LightVolumeCascadeParams placement = push.cascade == 0u ? frame.lightVolume.nearCascade : frame.lightVolume.farCascade;
-    vec2 planeM = placement.cornerM + (vec2(texel.xy) + 0.5f) * placement.texelM;
+    // Member by member: a whole struct copied out of the block is invalid SPIR-V (its layout decorations).
+    bool nearCascade = push.cascade == 0u;
+    vec2 cornerM = nearCascade ? frame.lightVolume.nearCascade.cornerM : frame.lightVolume.farCascade.cornerM;
+    float texelM = nearCascade ? frame.lightVolume.nearCascade.texelM : frame.lightVolume.farCascade.texelM;
+    vec2 planeM = cornerM + (vec2(texel.xy) + 0.5f) * texelM;
     // Map position from the window plane: invert planeM = eyeOnPlaneM + A mapPosM, A = [eastAxis northAxis].
     vec2 a = frame.window.eastAxis;
     vec2 b = frame.window.northAxis;
