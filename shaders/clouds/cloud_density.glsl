@@ -5,7 +5,7 @@
 #include "shaders/lib/cloud_extent.glsl"
 #include "shaders/lib/large_scale.glsl"
 
-// Extinction relative to cloudLook.x per genus: stratiform decks are optically thinner per metre.
+// Extinction relative to look.extinctionPerM per genus: stratiform decks are optically thinner per metre.
 float genusDensityScale(int cloudType)
 {
     if (cloudType == CLOUD_TYPE_STRATUS || cloudType == CLOUD_TYPE_ALTOSTRATUS)
@@ -22,20 +22,20 @@ float genusDensityScale(int cloudType)
 // h = hc + (2 rc z + |p|^2) / (r + rc) instead of |p - centre| - R.
 vec2 weatherMapPosition(vec3 p, out float altitudeM)
 {
-    float rc = frame.earth.y;
+    float rc = frame.earth.centreToEyeM;
     vec3 pc = p + vec3(0.0f, 0.0f, rc);
     float r = length(pc);
-    altitudeM = frame.cameraForward.w + (2.0f * rc * p.z + dot(p, p)) / (r + rc);
+    altitudeM = frame.camera.eyeAltitudeM + (2.0f * rc * p.z + dot(p, p)) / (r + rc);
     float horizontal = length(pc.xy);
     if (horizontal < 1e-3f)
         return vec2(0.0f);
-    float arcM = frame.earth.x * atan(horizontal, pc.z);
+    float arcM = frame.earth.radiusM * atan(horizontal, pc.z);
     return pc.xy * (arcM / horizontal);
 }
 
 vec3 toNoiseFrame(vec3 p)
 {
-    return vec3(dot(frame.enuToEcef0.xyz, p), dot(frame.enuToEcef1.xyz, p), dot(frame.enuToEcef2.xyz, p));
+    return vec3(dot(frame.enuToEcef.row0, p), dot(frame.enuToEcef.row1, p), dot(frame.enuToEcef.row2, p));
 }
 
 struct WeatherLookup
@@ -48,14 +48,14 @@ struct WeatherLookup
 // Window-plane position (m, the weather window's unwarped plane) of the point at map position `mapPosM`.
 vec2 windowPlanePosition(vec2 mapPosM)
 {
-    return frame.windowOffsetM.xy + mapPosM.x * frame.windowAxes.xy + mapPosM.y * frame.windowAxes.zw;
+    return frame.window.eyeOnPlaneM + mapPosM.x * frame.window.eastAxis + mapPosM.y * frame.window.northAxis;
 }
 
 WeatherLookup weatherLookup(vec2 mapPosM)
 {
     WeatherLookup w;
     vec2 planeM = windowPlanePosition(mapPosM);
-    w.uv = windowWarp(planeM, frame.earth.w, frame.earth.z) / (2.0f * frame.earth.w) + 0.5f;
+    w.uv = windowWarp(planeM, frame.window.halfExtentM, frame.window.warpRadiusM) / (2.0f * frame.window.halfExtentM) + 0.5f;
     w.inside = all(greaterThanEqual(w.uv, vec2(0.0f))) && all(lessThan(w.uv, vec2(1.0f)));
     w.texel = clamp(ivec2(w.uv * float(WEATHER_WINDOW_SIZE)), ivec2(0), ivec2(WEATHER_WINDOW_SIZE - 1));
     return w;
@@ -79,19 +79,19 @@ const float BASE_NOISE_WARP_M = 500.0f;
 // fraction and cell size vary over tens of kilometres.
 float baseShapeAt(vec3 lookupPos, vec3 largePos, float radPerM)
 {
-    vec4 n = textureLod(baseNoise, lookupPos / frame.noiseScale.x, 0.0f);
+    vec4 n = textureLod(baseNoise, lookupPos / frame.noisePeriod.baseM, 0.0f);
     float lowFreqFbm = mix(dot(n.yzw, vec3(0.625f, 0.25f, 0.125f)), largeScaleFbm(largePos, radPerM),
                            BASE_SHAPE_LARGE_WEIGHT);
     return equalizeBaseShape(remapValue(n.x, lowFreqFbm - 1.0f, 1.0f, 0.0f, 1.0f));
 }
 
-// Whether detail erosion applies at `distanceM` (frame.marchLod.xy: it fades out with distance, where its
+// Whether detail erosion applies at `distanceM` (between frame.march.detailFadeStartM and detailFadeEndM: it fades out with distance, where its
 // noise is finer than a pixel).
 float detailFade(float distanceM)
 {
-    if ((frame.image.w & FRAME_FLAG_NO_DETAIL) != 0u)
+    if ((frame.image.flags & FRAME_FLAG_NO_DETAIL) != 0u)
         return 0.0f;
-    return 1.0f - smoothstep(frame.marchLod.x, frame.marchLod.y, distanceM);
+    return 1.0f - smoothstep(frame.march.detailFadeStartM, frame.march.detailFadeEndM, distanceM);
 }
 
 // The curl noise that distorts the detail lookup at `noisePos`. Fetched by cloudDensity before the base
@@ -99,7 +99,7 @@ float detailFade(float distanceM)
 // bound by such chains of dependent fetches: weather, base noise, curl, detail).
 vec2 curlAt(vec3 noisePos)
 {
-    return textureLod(curlNoise, noisePos.xy / frame.noiseScale.z, 0.0f).xy;
+    return textureLod(curlNoise, noisePos.xy / frame.noisePeriod.curlM, 0.0f).xy;
 }
 
 // Detail erosion of `density` at `noisePos` (`curl`: curlAt there), faded by `fade` (detailFade), and the
@@ -108,16 +108,16 @@ vec2 curlAt(vec3 noisePos)
 float erodeAt(float density, vec3 noisePos, vec2 curl, float hf, float fade, float raggedness)
 {
     // Curl-distorted coordinates, strongest at the base where clouds look torn by turbulence.
-    vec3 q = noisePos + vec3(curl, -curl.x) * (1.0f - hf) * 0.12f * frame.noiseScale.y;
-    vec4 dn = textureLod(detailNoise, q / frame.noiseScale.y, 0.0f);
+    vec3 q = noisePos + vec3(curl, -curl.x) * (1.0f - hf) * 0.12f * frame.noisePeriod.detailM;
+    vec4 dn = textureLod(detailNoise, q / frame.noisePeriod.detailM, 0.0f);
     float detailFbm = dn.x * 0.625f + dn.y * 0.25f + dn.z * 0.125f;
-    float eroded = erodeWithDetail(density, detailFbm, hf, frame.cloudLook.y * fade);
+    float eroded = erodeWithDetail(density, detailFbm, hf, frame.look.detailErosion * fade);
     return eroded * raggedBaseFactor(hf, raggedness * fade, 1.0f - detailFbm);
 }
 
 struct DensitySample
 {
-    float density;   // relative density (multiplies cloudLook.x for the extinction per metre)
+    float density;   // relative density (multiplies look.extinctionPerM for the extinction per metre)
     float rainMmH;   // precipitation rate of the densest layer here (mm/h), for rain darkening
     float heightFraction;  // 0 at the base, 1 at the top of the layer that contributed most
     bool inLayer;    // a layer may hold cloud at the point (cloud_extent.glsl; its noise may still leave it empty)
@@ -132,22 +132,22 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
     s.inLayer = false;
     float h;
     WeatherLookup w = weatherLookup(weatherMapPosition(p, h));
-    if (!w.inside || h < frame.shell.x || h > frame.shell.y)
+    if (!w.inside || h < frame.shell.lowestBaseM || h > frame.shell.highestTopM)
         return s;
     vec3 noiseRel = toNoiseFrame(p);
     // The detail and the rain rate of full samples are fetched early (curlAt says why); the rain rate is
     // the same texel for every layer.
     float fade = cheap ? 0.0f : detailFade(distanceM);
     vec4 rainMmH = cheap ? vec4(0.0f) : textureLod(weatherWindow, vec3(w.uv, float(WEATHER_GPU_PRECIP_SLICE)), 0.0f);
-    vec3 radial = normalize(p + vec3(0.0f, 0.0f, frame.earth.y));  // local vertical at p
-    float radPerM = 6.2831853f / (float(NOISE_OFFSET_MODULUS_HIGH_PERIODS) * frame.noiseScale.w);
+    vec3 radial = normalize(p + vec3(0.0f, 0.0f, frame.earth.centreToEyeM));  // local vertical at p
+    float radPerM = 6.2831853f / (float(NOISE_OFFSET_MODULUS_HIGH_PERIODS) * frame.noisePeriod.highCloudM);
     float best = 0.0f;
     // Unrolled: with the current cloud shapes the unrolled loop makes the march faster in cumulus,
     // stratocumulus and cumulonimbus (BENCHMARKS.md). The including passes enable GL_EXT_control_flow_attributes.
     [[unroll]] for (int k = 0; k <= MAX_CLOUD_LAYERS; ++k)
     {
-        vec4 range = frame.layerRangeM[k];
-        if (h < range.x || h > range.y)
+        CloudLayerParams layerParams = frame.layers[k];
+        if (h < layerParams.lowestBaseM || h > layerParams.highestTopM)
             continue;
         bool anvilSlab = k == MAX_CLOUD_LAYERS;
         vec4 layer = textureLod(weatherWindow, vec3(w.uv, float(anvilSlab ? WEATHER_GPU_ANVIL_SLICE : k)), 0.0f);
@@ -160,11 +160,11 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
         int cloudType = anvilSlab ? CLOUD_TYPE_CUMULONIMBUS
                                   : int(texelFetch(weatherWindow, ivec3(w.texel, k), 0).w + 0.5f);
         // Above the domes, in an anvil's thin edge: no noise reaches the coverage (cloud_extent.glsl).
-        if (!(anvilSlab ? anvilSlabMayHoldCloud(hf, coverage) : layerMayHoldCloud(cloudType, hf, coverage, range.z)))
+        if (!(anvilSlab ? anvilSlabMayHoldCloud(hf, coverage) : layerMayHoldCloud(cloudType, hf, coverage, layerParams.anvilAmount)))
             continue;
         s.inLayer = true;
-        vec3 shear = vec3(frame.layerShearM[k].xy * hf, 0.0f);
-        vec3 noisePos = toNoiseFrame(-shear) + noiseRel + frame.layerNoiseOffsetM[k].xyz;
+        vec3 shear = vec3(frame.layers[k].topShearM * hf, 0.0f);
+        vec3 noisePos = toNoiseFrame(-shear) + noiseRel + frame.layers[k].noiseOffsetM;
         // The base shape varies slowly with height: its lookup point slides down the local vertical
         // toward the layer base by (1 - s) of the height (s per genus, baseNoiseVerticalScale), so that
         // clouds are vertically coherent while the detail noise keeps full 3D variation. Written as a
@@ -191,7 +191,7 @@ DensitySample cloudDensity(vec3 p, bool cheap, float distanceM)
             coverage *= coverageHeightFactor(cloudType, hf);
             if (cloudType == CLOUD_TYPE_CUMULONIMBUS)
             {
-                shape = anvilShape(shape, hf, range.z);
+                shape = anvilShape(shape, hf, layerParams.anvilAmount);
                 densityScale *= anvilDensity(hf) * 1.5f;
             }
         }

@@ -5,14 +5,14 @@
 
 // The light cone of one lit view sample: optical depth toward the light from 6 samples in a widening
 // cone, then one long sample beyond it (Schneider 2015; light_cone.glsl); cheap density once the path is
-// already dense, and beyond the first frame.marchLod.w samples. Within 15.4 km of the eye those cheap far
+// already dense, and beyond the first frame.march.fullConeSamples samples. Within 15.4 km of the eye those cheap far
 // samples come precomputed from the light volume or its far cascade (shaders/shared/light_volume.h): one
-// fetch instead of 5 density lookups. Beyond frame.marchLod.z metres (0: never) 3 cheap samples cover the
+// fetch instead of 5 density lookups. Beyond frame.march.coneCheapBeyondM metres (0: never) 3 cheap samples cover the
 // same cone: there a pixel spans tens of metres and the view samples are far apart. Beyond the light
-// volume, a lit sample within frame.lightVolume.w metres of the last one whose cone marched its far
+// volume, a lit sample within frame.lightReuse.coneTailReuseM metres of the last one whose cone marched its far
 // samples takes that cone's far part (ConeTail) instead of marching its own: the next lit sample in a
 // cloud is tens of metres away, its far samples hundreds. The march takes the cone's density lookups
-// one per loop iteration (marchClouds says why), so the cone is a small state. Beyond frame.march.z
+// one per loop iteration (marchClouds says why), so the cone is a small state. Beyond frame.march.coneNearMergeBeyondM
 // metres (0: never) the detailed near samples are taken as one sample over their length: there the
 // detail erosion has faded out and a pixel spans tens of metres. The frame ends when its costliest rays
 // do, and those are far ones (the horizon bands, the Cb's surroundings).
@@ -45,7 +45,7 @@ struct ConeTail
 // The relative density x metres whose diffusion factor is `factor` (diffusionFactor inverted).
 float diffusionDepth(float factor)
 {
-    return (1.0f / max(factor, 1e-3f) - 1.0f) / (kDiffusionPerOpticalDepth * max(frame.cloudLook.x, 1e-12f));
+    return (1.0f / max(factor, 1e-3f) - 1.0f) / (kDiffusionPerOpticalDepth * max(frame.look.extinctionPerM, 1e-12f));
 }
 
 LightCone beginLightCone(vec3 dir, float originT, float distanceM, ConeTail tail)
@@ -53,43 +53,43 @@ LightCone beginLightCone(vec3 dir, float originT, float distanceM, ConeTail tail
     LightCone c;
     c.originT = originT;
     vec3 p = dir * originT;
-    c.stepM = frame.phaseTerms.w;
-    uint samples = min(frame.march.y, 6u);
-    bool coarse = frame.marchLod.z > 0.0f && distanceM > frame.marchLod.z;
+    c.stepM = frame.look.coneStepM;
+    uint samples = min(frame.march.coneSamples, 6u);
+    bool coarse = frame.march.coneCheapBeyondM > 0.0f && distanceM > frame.march.coneCheapBeyondM;
     if (coarse && samples > 3u)
     {
         // Steps i = 1..n of stepM * i cover stepM * n(n+1)/2: the same length with 3 samples.
         c.stepM *= float(samples * (samples + 1u)) / 12.0f;
         samples = 3u;
     }
-    c.detailed = coarse ? 0u : uint(frame.marchLod.w);
+    c.detailed = coarse ? 0u : frame.march.fullConeSamples;
     c.live = samples;
     c.tailTransmittance = -1.0f;
     c.tailDepth = 0.0f;
     c.tailTaken = false;
     c.tailMarched = false;
-    c.nearMerged = frame.march.z > 0u && distanceM > float(frame.march.z) && c.detailed > 1u && c.detailed <= samples;
+    c.nearMerged = frame.march.coneNearMergeBeyondM > 0u && distanceM > float(frame.march.coneNearMergeBeyondM) && c.detailed > 1u && c.detailed <= samples;
     if (!coarse && c.detailed < samples)
     {
         float h;
         vec2 mapPosM = weatherMapPosition(p, h);
         vec3 uvw;
         vec2 planeM = windowPlanePosition(mapPosM);
-        if (lightVolumeCoordinates(frame.lightVolume, planeM, h, uvw))
+        if (lightVolumeCoordinates(frame.lightVolume.nearCascade, planeM, h, uvw))
         {
             c.live = c.detailed;
             vec2 tail = textureLod(lightVolume, uvw, 0.0f).xy;
             c.tailTransmittance = tail.x;
             c.tailDepth = diffusionDepth(tail.y);
         }
-        else if (lightVolumeCoordinates(frame.lightVolumeFar, planeM, h, uvw))
+        else if (lightVolumeCoordinates(frame.lightVolume.farCascade, planeM, h, uvw))
         {
             c.live = c.detailed;
             vec2 tail = textureLod(lightVolumeFar, uvw, 0.0f).xy;
             c.tailTransmittance = tail.x;
             c.tailDepth = diffusionDepth(tail.y);
         }
-        else if (tail.valid && distanceM > frame.lightVolumeFar.w && abs(originT - tail.originT) < frame.lightVolume.w)
+        else if (tail.valid && distanceM > frame.lightReuse.coneTailReuseBeyondM && abs(originT - tail.originT) < frame.lightReuse.coneTailReuseM)
         {
             c.live = c.detailed;
             c.tailDepth = tail.depth;
@@ -124,7 +124,7 @@ vec3 lightConeSamplePoint(LightCone c, vec3 dir, vec3 lightDir, out bool cheap, 
     if (c.next < c.live)
     {
         lengthM = c.stepM * float(c.next + 1u);
-        cheap = c.next >= c.detailed || c.depth * frame.cloudLook.x > 0.3f;
+        cheap = c.next >= c.detailed || c.depth * frame.look.extinctionPerM > 0.3f;
         return coneSamplePoint(origin, lightDir, c.next, c.coveredM + lengthM, lengthM);
     }
     lengthM = kConeLongSampleSpan * c.coveredM;  // light_cone.glsl says why
@@ -147,10 +147,10 @@ float lightConeOpticalDepth(LightCone c)
 {
     // The volume holds transmittance (light_volume.h says why); 1e-7: below it, no light reaches.
     if (c.tailTransmittance >= 0.0f)
-        return c.depth * frame.cloudLook.x - log(max(c.tailTransmittance, 1e-7f));
+        return c.depth * frame.look.extinctionPerM - log(max(c.tailTransmittance, 1e-7f));
     if (c.tailTaken)
-        return (c.depth + c.tailDepth) * frame.cloudLook.x;
-    return c.depth * frame.cloudLook.x;
+        return (c.depth + c.tailDepth) * frame.look.extinctionPerM;
+    return c.depth * frame.look.extinctionPerM;
 }
 
 // Optical depth toward the light of a finished cone, for the diffuse term (diffusionFactor). Marched, the
@@ -161,7 +161,7 @@ float lightConeOpticalDepth(LightCone c)
 float lightConeDiffusionDepth(LightCone c)
 {
     if (c.tailTransmittance >= 0.0f)
-        return (c.depth + c.tailDepth) * frame.cloudLook.x;
+        return (c.depth + c.tailDepth) * frame.look.extinctionPerM;
     return lightConeOpticalDepth(c);
 }
 
@@ -187,18 +187,18 @@ float multipleScattering(float opticalDepth, float diffusionDepth, float cosThet
     float c = 1.0f;
     float sum = 0.0f;
     float diffusion = diffusionFactor(diffusionDepth);
-    int octaves = int(frame.cloudLook.w);
+    int octaves = int(frame.look.octaves);
     for (int o = 0; o < octaves; ++o)
     {
-        float phase = phaseTwoLobeHG(frame.phaseTerms.x * c, frame.phaseTerms.y * c, frame.phaseTerms.z, cosTheta);
+        float phase = phaseTwoLobeHG(frame.look.phaseForwardG * c, frame.look.phaseBackG * c, frame.look.phaseForwardWeight, cosTheta);
         sum += b * phase * (o == 0 ? exp(-opticalDepth) : max(exp(-opticalDepth * a), diffusion));
-        a *= frame.lightingTerms.x;
-        b *= frame.lightingTerms.y;
-        c *= frame.lightingTerms.z;
+        a *= frame.look.octaveAttenuation;
+        b *= frame.look.octaveContribution;
+        c *= frame.look.octaveEccentricity;
     }
-    sum += b / max(1.0f - frame.lightingTerms.y, 0.05f) * (0.25f / 3.14159265f) * diffusion;
+    sum += b / max(1.0f - frame.look.octaveContribution, 0.05f) * (0.25f / 3.14159265f) * diffusion;
     float powder = 1.0f - exp(-2.0f * localOpticalDepth);  // 0.5 beerPowder(d) / e^-d
-    float powderWeight = frame.lightingTerms.w * saturate1(0.5f - 0.5f * cosTheta);
+    float powderWeight = frame.look.powderStrength * saturate1(0.5f - 0.5f * cosTheta);
     return sum * mix(1.0f, powder, powderWeight);
 }
 
@@ -213,17 +213,17 @@ const float kSkyAmbientAtBase = 0.05f;
 const float kGroundBounceShare = 0.15f;
 vec3 ambientLight(float heightFraction)
 {
-    vec3 sky = frame.ambientSky.rgb * mix(kSkyAmbientAtBase, 1.0f, heightFraction);
-    vec3 ground = frame.ambientGround.rgb * (kGroundBounceShare * frame.ambientSky.w / 3.14159265f) *
+    vec3 sky = frame.ambient.skyRadiance * mix(kSkyAmbientAtBase, 1.0f, heightFraction);
+    vec3 ground = frame.ambient.groundIrradiance * (kGroundBounceShare * frame.ambient.groundAlbedo / 3.14159265f) *
                   (1.0f - heightFraction);
-    return frame.cloudLook.z * (sky + ground);
+    return frame.look.ambientStrength * (sky + ground);
 }
 
 // The view march's step near the eye (m); steps grow with distance beyond it (marchClouds). A function, not
 // a variable held through the march's loop.
 float marchBaseStepM()
 {
-    return clamp((frame.shell.y - frame.shell.x) / 64.0f, 30.0f, 250.0f);
+    return clamp((frame.shell.highestTopM - frame.shell.lowestBaseM) / 64.0f, 30.0f, 250.0f);
 }
 
 // Below this view transmittance the march stops and the ray counts as opaque.
@@ -255,13 +255,13 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
     // Steps grow geometrically with distance, just fast enough to reach tExit within the step budget
     // (long grazing paths through a layer get 1-10% steps; short ones keep the base step).
     float ratio = max(tExit, 1.0f) / max(tEnter + baseStep, baseStep);
-    float growth = clamp(pow(ratio, 1.0f / float(frame.march.x)) - 1.0f, 0.005f, 0.015f);
+    float growth = clamp(pow(ratio, 1.0f / float(frame.march.maxViewSteps)) - 1.0f, 0.005f, 0.015f);
     // Blue-noise start offset read at the ray's earth-fixed direction (world_jitter.glsl), not at its
     // pixel: the noise stays on the clouds when the view turns, and channels agree. Decorrelated per
-    // frame by the golden ratio for accumulated full renders (frame.image.z; 0 in reprojected frames, so
+    // frame by the golden ratio for accumulated full renders (frame.sequence.frameIndex; 0 in reprojected frames, so
     // that a pixel marched again gives the same value and a still view converges to the full render).
-    ivec2 jitterTexel = worldJitterTexel(toNoiseFrame(dir), frame.worldJitter.x);
-    float jitter = fract(texelFetch(blueNoise, jitterTexel, 0).x + 0.61803399f * float(frame.image.z));
+    ivec2 jitterTexel = worldJitterTexel(toNoiseFrame(dir), frame.march.jitterTexelRad);
+    float jitter = fract(texelFetch(blueNoise, jitterTexel, 0).x + 0.61803399f * float(frame.sequence.frameIndex));
     float t = tEnter + jitter * max(baseStep, tEnter * growth);
     int state = MARCH_SEARCH;
     // Empty-space skipping in the search (empty_space.glsl): the stretch tried next, where the last
@@ -269,7 +269,7 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
     // sample lay outside every layer. Inside one (in the gaps of a cumulus field, or with the eye in a
     // deck) a check fails for sure, as the bounds hold that layer, and would only cost its fetch; so the
     // first check waits for the first sample.
-    bool skipping = (frame.image.w & FRAME_FLAG_NO_SKIPPING) == 0u;
+    bool skipping = (frame.image.flags & FRAME_FLAG_NO_SKIPPING) == 0u;
     float skipStretchM = 0.0f;
     float recheckT = tEnter;
     bool outsideLayers = false;
@@ -304,21 +304,21 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
     // The last cone marched here (not taken over): where it started and its optical depth (the diffuse
     // term's: lightConeDiffusionDepth; one register, so the octaves of the deep samples that take it take
     // that too, where the volume lit it a little deeper than its transmittance says); deep lit samples
-    // within frame.detailLod.w metres of it take that light.
+    // within frame.lightReuse.deepLightReuseM metres of it take that light.
     float lastConeT = 0.0f;
     float lastConeDepth = -1.0f;
     // The step of the last view sample: a bisection moves the sample to the surface it finds but keeps
     // the step length it was taken with.
     float dt = baseStep;
     // 13 lookups at most per view sample (itself, 5 bisection, 6 cone, the long one).
-    uint lookupBudget = 13u * 2u * frame.march.x;
+    uint lookupBudget = 13u * 2u * frame.march.maxViewSteps;
     // `lookups` counts the iterations: it is the loop's counter too.
     for (lookups = 0u; lookups < lookupBudget;)
     {
         bool viewSample = state == MARCH_SEARCH || state == MARCH_FULL;
         uint viewSamples = samples & 0xffffu;
         uint fullSamples = samples >> 16u;
-        if (viewSample && (viewSamples >= 2u * frame.march.x || fullSamples >= frame.march.x || t >= tExit))
+        if (viewSample && (viewSamples >= 2u * frame.march.maxViewSteps || fullSamples >= frame.march.maxViewSteps || t >= tExit))
             break;
         ++lookups;
         if (viewSample)
@@ -342,8 +342,8 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             skipStretchM = 0.5f * stretchM;
         }
         // Deep in a cloud, where little of what lies behind reaches the eye, the base shape without detail
-        // erosion (frame.detailLod.x: the view transmittance below which; 0: never).
-        bool deep = transmittance < frame.detailLod.x;
+        // erosion (frame.march.detailMinTransmittance: the view transmittance below which; 0: never).
+        bool deep = transmittance < frame.march.detailMinTransmittance;
         vec3 q = dir * t;
         bool cheap = state == MARCH_SEARCH || deep;
         float coneLengthM = 0.0f;
@@ -381,7 +381,7 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
                 afterEmpty = true;
                 if (++stateCount >= 6)
                     state = MARCH_SEARCH;
-                t += deep ? dt * frame.detailLod.y : dt;
+                t += deep ? dt * frame.march.deepStepFactor : dt;
                 continue;
             }
             if (afterEmpty && t - lastEmptyT > 60.0f)
@@ -419,27 +419,27 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             stateCount = 0;
             bool firstInCloud = afterEmpty;
             afterEmpty = false;
-            litSigmaS = ds.density * frame.cloudLook.x;
+            litSigmaS = ds.density * frame.look.extinctionPerM;
             // Rain makes bases dark: precipitation adds absorption near the base (docs/model.md).
             float rainAbsorption = rainAbsorptionFactor(ds.rainMmH, ds.heightFraction);
             litSigmaE = litSigmaS * (1.0f + rainAbsorption);
             litHeightFraction = ds.heightFraction;
-            // Inside a cloud a step covers at most frame.detailLod.z of optical depth at this sample's
+            // Inside a cloud a step covers at most frame.march.maxStepOpticalDepth of optical depth at this sample's
             // extinction, so that the sunlit skin, a mean free path deep, gets its samples. The sample at
             // a surface is thin (the bisection ends where the density starts), so its step counts the
             // full-density extinction; while the view transmittance is above 0.5, at least half of it
             // (the eroded skin is thin too, and what the eye sees). Thinner cloud behind that keeps its
-            // long steps. Deep samples may stand for a longer step (frame.detailLod.y).
+            // long steps. Deep samples may stand for a longer step (frame.march.deepStepFactor).
             litStepM = dt;
-            if (frame.detailLod.z > 0.0f)
+            if (frame.march.maxStepOpticalDepth > 0.0f)
             {
-                float floorSigma = firstInCloud          ? frame.cloudLook.x
-                                   : transmittance > 0.5f ? 0.5f * frame.cloudLook.x
+                float floorSigma = firstInCloud          ? frame.look.extinctionPerM
+                                   : transmittance > 0.5f ? 0.5f * frame.look.extinctionPerM
                                                           : 0.0f;
-                litStepM = min(litStepM, frame.detailLod.z / max(litSigmaE, floorSigma));
+                litStepM = min(litStepM, frame.march.maxStepOpticalDepth / max(litSigmaE, floorSigma));
             }
             if (deep)
-                litStepM *= frame.detailLod.y;
+                litStepM *= frame.march.deepStepFactor;
             if (litFirstT < 0.0f)
                 litFirstT = t;
             // Light the step where the eye sees it: at its mean depth weighted by the transmittance from
@@ -449,11 +449,11 @@ void marchClouds(vec3 dir, float tEnter, float tExit, inout vec3 radiance, inout
             float lightDepthM = stepDepth < 1e-3f ? 0.5f * litStepM
                                                   : 1.0f / litSigmaE - litStepM / (exp(stepDepth) - 1.0f);
             float litT = t + lightDepthM;
-            if (deep && lastConeDepth >= 0.0f && abs(litT - lastConeT) < frame.detailLod.w)
+            if (deep && lastConeDepth >= 0.0f && abs(litT - lastConeT) < frame.lightReuse.deepLightReuseM)
             {
-                // Behind a view transmittance below frame.detailLod.x the light of the last cone, finished.
+                // Behind a view transmittance below frame.march.detailMinTransmittance the light of the last cone, finished.
                 cone = LightCone(litT, 0.0f, 0u, 0u, 0u, 0.0f, 0.0f, exp(-lastConeDepth),
-                                 lastConeDepth / max(frame.cloudLook.x, 1e-12f), false, false, false);
+                                 lastConeDepth / max(frame.look.extinctionPerM, 1e-12f), false, false, false);
             }
             else
                 cone = beginLightCone(dir, litT, t, coneTail);

@@ -34,11 +34,11 @@ layout(binding = 7) uniform sampler2D transmittanceLut;
 layout(binding = 8, rgba16f) uniform writeonly image2D cloudOut;
 layout(binding = 9, r32f) uniform writeonly image2D depthOut;
 // Optical depth of the far part of the light cone around the eye (light_volume.h); a 1x1x1 stand-in
-// when frame.lightVolume.z is 0 (no volume this frame).
+// when frame.lightVolume.nearCascade.texelM is 0 (no volume this frame).
 layout(binding = 10) uniform sampler3D lightVolume;
 // The weather window's column-bounds pyramid (column_bounds.h): empty-space skipping in the search.
 layout(binding = 11) uniform usampler2D columnBounds;
-// The light volume's far cascade (320 m texels; frame.lightVolumeFar.z 0: none this frame).
+// The light volume's far cascade (320 m texels; frame.lightVolume.farCascade.texelM 0: none this frame).
 layout(binding = 12) uniform sampler3D lightVolumeFar;
 // Which image row of workgroups this dispatch row marches, and the lookups each row took (march_order.h).
 layout(binding = 13, std430) buffer MarchOrderBlock
@@ -67,8 +67,8 @@ shared uint groupLookups;
 uint marchPixel(ivec2 pixel, ivec2 texel)
 {
     vec3 dir = viewRayDirection(vec2(pixel) + 0.5f);
-    float R = frame.earth.x;
-    float hc = frame.cameraForward.w;
+    float R = frame.earth.radiusM;
+    float hc = frame.camera.eyeAltitudeM;
     float mu = dir.z;
 
     // The volumetric clouds, then the 2D high-cloud layer in front of or behind them. The march starts
@@ -80,7 +80,7 @@ uint marchPixel(ivec2 pixel, ivec2 texel)
     uint lookups = 0u;
     float tEnter;
     float tExit;
-    if (rayShellInterval(mu, hc, frame.shell.x, frame.shell.y, R, frame.shell.z, tEnter, tExit))
+    if (rayShellInterval(mu, hc, frame.shell.lowestBaseM, frame.shell.highestTopM, R, frame.shell.maxMarchDistanceM, tEnter, tExit))
     {
         marchClouds(dir, tEnter, tExit, clouds.radiance, clouds.transmittance, clouds.depthWeighted, clouds.frontM,
                     lookups);
@@ -98,12 +98,12 @@ uint marchPixel(ivec2 pixel, ivec2 texel)
     {
         CloudPath highCloud = CloudPath(high.radiance, 1.0f - high.alpha, high.alpha * high.distanceM, high.alpha,
                                         high.alpha >= kCloudFrontOpacity ? high.distanceM : 0.0f);
-        c = hc > frame.shell.w ? inFrontOf(highCloud, clouds) : inFrontOf(clouds, highCloud);
+        c = hc > frame.shell.highCloudAltitudeM ? inFrontOf(highCloud, clouds) : inFrontOf(clouds, highCloud);
     }
     vec2 depth = cloudDepthLayer(c);
     imageStore(cloudOut, texel, vec4(c.radiance, 1.0f - c.transmittance));
     imageStore(depthOut, texel, vec4(depth.y, 0.0f, 0.0f, 0.0f));
-    if ((frame.image.w & FRAME_FLAG_DEPTH_LAYER) != 0u)
+    if ((frame.image.flags & FRAME_FLAG_DEPTH_LAYER) != 0u)
         imageStore(frontOut, texel, vec4(depth.x, 0.0f, 0.0f, 0.0f));
     return lookups;
 }
@@ -113,24 +113,24 @@ void main()
     if (gl_LocalInvocationIndex == 0u)
         groupLookups = 0u;
     barrier();
-    // Reprojected frames (frame.reprojection.x = B: 4, or 2 or 1 near clouds) march one pixel of each
+    // Reprojected frames (frame.reprojection.blockPx = B: 4, or 2 or 1 near clouds) march one pixel of each
     // BxB block and store it at the block's texel of a block-resolution image (and, in a turn or a pitch
     // change, every pixel of the columns or rows the previous frame did not see, beside and below them);
     // full-resolution frames march every pixel. The dispatch's workgroup rows run in the order the host
     // chose (march_order.h).
-    uint block = max(frame.reprojection.x, 1u);
-    uint rows = (frame.image.y + block - 1u) / block + (block > 1u ? newRowCount() * block : 0u);
+    uint block = max(frame.reprojection.blockPx, 1u);
+    uint rows = (frame.image.heightPx + block - 1u) / block + (block > 1u ? newRowCount() * block : 0u);
     uint groupRows = (rows + gl_WorkGroupSize.y - 1u) / gl_WorkGroupSize.y;
     uint groupRow = min(marchOrder.rowOrder[min(gl_WorkGroupID.y, MARCH_ORDER_MAX_ROWS - 1u)], groupRows - 1u);
     uvec2 id = uvec2(gl_GlobalInvocationID.x, groupRow * gl_WorkGroupSize.y + gl_LocalInvocationID.y);
-    ivec2 pixel = ivec2(id * block + uvec2(frame.reprojection.y, frame.reprojection.z));
+    ivec2 pixel = ivec2(id * block + uvec2(frame.reprojection.phasePx.x, frame.reprojection.phasePx.y));
     // Beside and below the blocks: the pixels of the lines marched in full (new_lines.glsl).
     if (block > 1u && (int(id.x) >= newColumnsTexelX0(int(block)) || int(id.y) >= newRowsTexelY0(int(block))))
         pixel = newLinePixel(ivec2(id), int(block));
-    if (pixel.x >= 0 && pixel.x < int(frame.image.x) && pixel.y < int(frame.image.y))
+    if (pixel.x >= 0 && pixel.x < int(frame.image.widthPx) && pixel.y < int(frame.image.heightPx))
     {
         uint lookups = marchPixel(pixel, ivec2(id));
-        if ((frame.image.w & FRAME_FLAG_LOOKUP_TOTALS) != 0u)
+        if ((frame.image.flags & FRAME_FLAG_LOOKUP_TOTALS) != 0u)
             atomicAdd(groupLookups, lookups);
         else
             atomicMax(groupLookups, lookups);

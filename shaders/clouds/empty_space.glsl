@@ -5,7 +5,7 @@
 // Column-bounds level-0 texel coordinates (texel units) of the point at map position `mapPosM`.
 vec2 columnBoundsTexelPosition(vec2 mapPosM)
 {
-    vec2 uv = windowWarp(windowPlanePosition(mapPosM), frame.earth.w, frame.earth.z) / (2.0f * frame.earth.w) + 0.5f;
+    vec2 uv = windowWarp(windowPlanePosition(mapPosM), frame.window.halfExtentM, frame.window.warpRadiusM) / (2.0f * frame.window.halfExtentM) + 0.5f;
     return uv * float(WEATHER_WINDOW_SIZE);
 }
 
@@ -49,7 +49,7 @@ bool noCloudOnSegment(vec3 rayOrigin, vec3 dir, float t0, float t1)
     // point nearest the earth's centre.
     float hHigh = max(h0, h1);
     float hLow = min(h0, h1);
-    float tNearest = -dot(rayOrigin + vec3(0.0f, 0.0f, frame.earth.y), dir);
+    float tNearest = -dot(rayOrigin + vec3(0.0f, 0.0f, frame.earth.centreToEyeM), dir);
     if (tNearest > t0 && tNearest < t1)
     {
         float hNearest;

@@ -28,23 +28,23 @@ float distanceOutOfSphere(float r, float mu, float sphereR)
 }
 
 // Transmittance of the direct light from `p` toward `lightDir` beyond `reachM` metres (the cone's reach).
-// For each layer, the part of the path inside the layer's altitude band (frame.layerRangeM, over the whole
+// For each layer, the part of the path inside the layer's altitude band (frame.layers lowestBaseM, highestTopM, over the whole
 // window) beyond the reach, with the coverage at its middle: one window lookup and one fetch per layer
 // that the path crosses, twice (a lookup at points spread along the whole shell missed a low layer under a
 // high shell top).
 float farShadowTransmittance(vec3 p, vec3 lightDir, float reachM)
 {
-    vec3 pc = p + vec3(0.0f, 0.0f, frame.earth.y);
+    vec3 pc = p + vec3(0.0f, 0.0f, frame.earth.centreToEyeM);
     float r = length(pc);
     float mu = dot(pc, lightDir) / r;
     float crossings = 0.0f;
     for (int k = 0; k < MAX_CLOUD_LAYERS; ++k)
     {
-        vec4 range = frame.layerRangeM[k];
-        float rTop = frame.earth.x + range.y;
-        if (range.y <= range.x || r >= rTop)
+        float baseM = frame.layers[k].lowestBaseM, topM = frame.layers[k].highestTopM;
+        float rTop = frame.earth.radiusM + topM;
+        if (topM <= baseM || r >= rTop)
             continue;
-        float rBottom = frame.earth.x + range.x;
+        float rBottom = frame.earth.radiusM + baseM;
         float fromM = max(r < rBottom ? distanceOutOfSphere(r, mu, rBottom) : 0.0f, reachM);
         float toM = distanceOutOfSphere(r, mu, rTop);
         if (toM <= fromM)

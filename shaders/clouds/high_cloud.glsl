@@ -17,15 +17,15 @@ HighCloudSample sampleHighCloud(vec3 dir, float mu, float hc, float R)
     s.radiance = vec3(0.0f);
     s.alpha = 0.0f;
     s.distanceM = 0.0f;
-    float hHigh = frame.shell.w;
-    if ((frame.image.w & FRAME_FLAG_NO_HIGH_CLOUD) != 0u || hHigh <= 0.0f)
+    float hHigh = frame.shell.highCloudAltitudeM;
+    if ((frame.image.flags & FRAME_FLAG_NO_HIGH_CLOUD) != 0u || hHigh <= 0.0f)
         return s;
     float tNear;
     float tFar;
     if (!raySphereRoots(R + hc, mu, hc, hHigh, R, tNear, tFar))
         return s;
     float t = hc < hHigh ? tFar : tNear;
-    if (t <= 0.0f || t > frame.shell.z)
+    if (t <= 0.0f || t > frame.shell.maxMarchDistanceM)
         return s;
     if (hc < hHigh)
     {
@@ -41,7 +41,7 @@ HighCloudSample sampleHighCloud(vec3 dir, float mu, float hc, float R)
     float cosTheta = dot(dir, lightDir);
     vec3 light = keyLightAt(p, lightDir);
     float phase = phaseTwoLobeHG(0.85f, -0.2f, 0.75f, cosTheta);
-    s.radiance = s.alpha * (light * phase + frame.ambientSky.rgb * frame.cloudLook.z);
+    s.radiance = s.alpha * (light * phase + frame.ambient.skyRadiance * frame.look.ambientStrength);
     s.distanceM = t;
     return s;
 }

@@ -22,8 +22,8 @@ float highCloudAlpha(vec3 p)
     int cloudType = int(texelFetch(weatherWindow, ivec3(w.texel, WEATHER_GPU_HIGH_SLICE), 0).z + 0.5f);
     vec2 wind = textureLod(weatherWindow, vec3(w.uv, float(WEATHER_GPU_HIGH_WIND_SLICE)), 0.0f).xy;
 
-    vec3 q = toNoiseFrame(p) + frame.layerNoiseOffsetM[MAX_CLOUD_LAYERS].xyz;
-    float period = frame.noiseScale.w;
+    vec3 q = toNoiseFrame(p) + frame.layers[MAX_CLOUD_LAYERS].noiseOffsetM;
+    float period = frame.noisePeriod.highCloudM;
     float pattern;
     if (cloudType == CLOUD_TYPE_CIRROCUMULUS)
     {

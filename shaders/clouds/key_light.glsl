@@ -6,13 +6,13 @@
 
 vec3 keyLightIrradiance()
 {
-    return moonIsKeyLight() ? frame.moonIrradiance.rgb : frame.sunIrradiance.rgb;
+    return moonIsKeyLight() ? frame.light.moonIrradiance : frame.light.sunIrradiance;
 }
 
 // Key light arriving at `p` through the atmosphere (transmittance LUT at the point's radius).
 vec3 keyLightAt(vec3 p, vec3 lightDir)
 {
-    vec3 pc = p + vec3(0.0f, 0.0f, frame.earth.y);
+    vec3 pc = p + vec3(0.0f, 0.0f, frame.earth.centreToEyeM);
     float r = length(pc);
     float muLight = dot(pc, lightDir) / r;
     return keyLightIrradiance() * sampleTransmittance(transmittanceLut, atmosphere, r, muLight);

@@ -29,8 +29,8 @@ const float kConeLongSampleAt = 2.0f;
 // (far_shadow.glsl takes over from there).
 float lightConeReachM()
 {
-    uint n = min(frame.march.y, 6u);
-    float coveredM = frame.phaseTerms.w * float(n * (n + 1u) / 2u);
+    uint n = min(frame.march.coneSamples, 6u);
+    float coveredM = frame.look.coneStepM * float(n * (n + 1u) / 2u);
     return (kConeLongSampleAt + 0.5f * kConeLongSampleSpan) * coveredM;
 }
 
@@ -42,11 +42,11 @@ const vec3 kConeKernel[6] = vec3[](vec3(0.38f, -0.52f, 0.29f), vec3(-0.71f, 0.12
 // The light that shapes the clouds: the sun by day and in twilight down to -4 degrees, else the moon.
 bool moonIsKeyLight()
 {
-    return frame.sunDirection.z < -0.07f;
+    return frame.light.sunDirectionEnu.z < -0.07f;
 }
 vec3 keyLightDirection()
 {
-    return moonIsKeyLight() ? frame.moonDirection.xyz : frame.sunDirection.xyz;
+    return moonIsKeyLight() ? frame.light.moonDirectionEnu : frame.light.sunDirectionEnu;
 }
 
 // Cone sample i (0-based) toward the light from `p`: step i is (i + 1) x stepM long and ends at the
@@ -71,15 +71,14 @@ float coneTailDepth(vec3 p, vec3 lightDir, uint first, uint samples, float stepM
     return depth + cloudDensity(p + lightDir * (kConeLongSampleAt * t), true, 0.0f).density * (kConeLongSampleSpan * t);
 }
 
-// Coordinates in the light volume placed at `placement` (frame.lightVolume or frame.lightVolumeFar: xy
-// corner, z texel size) of a point at window-plane position `planeM` and altitude `altitudeM`; false when
+// Coordinates in the light volume placed at `placement` (frame.lightVolume.nearCascade or farCascade) of a point at window-plane position `planeM` and altitude `altitudeM`; false when
 // it lies outside the volume's texel centres (the march then tries the next, or takes the live cone) or
 // the volume is off.
-bool lightVolumeCoordinates(vec4 placement, vec2 planeM, float altitudeM, out vec3 uvw)
+bool lightVolumeCoordinates(LightVolumeCascadeParams placement, vec2 planeM, float altitudeM, out vec3 uvw)
 {
-    float texelM = placement.z;
-    vec2 uv = (planeM - placement.xy) / (texelM * float(LIGHT_VOLUME_SIZE));
-    float w = (altitudeM - frame.shell.x) / max(frame.shell.y - frame.shell.x, 1.0f);
+    float texelM = placement.texelM;
+    vec2 uv = (planeM - placement.cornerM) / (texelM * float(LIGHT_VOLUME_SIZE));
+    float w = (altitudeM - frame.shell.lowestBaseM) / max(frame.shell.highestTopM - frame.shell.lowestBaseM, 1.0f);
     uvw = vec3(uv, w);
     float margin = 0.5f / float(LIGHT_VOLUME_SIZE);
     return texelM > 0.0f && all(greaterThanEqual(uv, vec2(margin))) && all(lessThanEqual(uv, vec2(1.0f - margin)));

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Builds the light volume (shaders/shared/light_volume.h): for each texel, the transmittance and the
-// diffusion factor (light_cone.glsl) of the far cone samples toward the key light (from frame.marchLod.w
+// diffusion factor (light_cone.glsl) of the far cone samples toward the key light (from frame.march.fullConeSamples
 // on) and of the long sample, exactly as the march would take them at the texel centre (coneTailDepth).
 // One invocation per texel.
 #version 460
@@ -21,7 +21,7 @@ layout(binding = 2) uniform sampler3D baseNoise;
 layout(binding = 3) uniform sampler3D detailNoise;  // not read (cheap density only); cloud_density.glsl names it
 layout(binding = 4) uniform sampler2D curlNoise;    // idem
 layout(binding = 5, rg16f) uniform writeonly image3D lightVolumeOut;
-// Which volume this dispatch fills: 0 the light volume (frame.lightVolume), 1 its far cascade.
+// Which volume this dispatch fills: 0 the light volume (frame.lightVolume.nearCascade), 1 its far cascade.
 layout(push_constant) uniform LightVolumePush { uint cascade; } push;
 
 #include "shaders/clouds/cloud_density.glsl"
@@ -32,13 +32,13 @@ layout(push_constant) uniform LightVolumePush { uint cascade; } push;
 // The vertical is written without the cancellation of r cos(theta) - rc in float.
 vec3 pointAtMapPosition(vec2 mapPosM, float altitudeM)
 {
-    float R = frame.earth.x;
+    float R = frame.earth.radiusM;
     float r = R + altitudeM;
     float arcM = length(mapPosM);
     float theta = arcM / R;
     vec2 horizontal = arcM > 1e-3f ? mapPosM * (r * sin(theta) / arcM) : vec2(0.0f);
     float s = sin(0.5f * theta);
-    return vec3(horizontal, (altitudeM - frame.cameraForward.w) - 2.0f * r * s * s);
+    return vec3(horizontal, (altitudeM - frame.camera.eyeAltitudeM) - 2.0f * r * s * s);
 }
 
 void main()
@@ -46,19 +46,22 @@ void main()
     ivec3 texel = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(texel, ivec3(LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS))))
         return;
-    vec4 placement = push.cascade == 0u ? frame.lightVolume : frame.lightVolumeFar;
-    vec2 planeM = placement.xy + (vec2(texel.xy) + 0.5f) * placement.z;
-    // Map position from the window plane: invert planeM = windowOffsetM + A mapPosM, A = [axes.xy axes.zw].
-    vec2 a = frame.windowAxes.xy;
-    vec2 b = frame.windowAxes.zw;
-    vec2 rel = planeM - frame.windowOffsetM.xy;
+    // Member by member: a whole struct copied out of the block is invalid SPIR-V (its layout decorations).
+    bool nearCascade = push.cascade == 0u;
+    vec2 cornerM = nearCascade ? frame.lightVolume.nearCascade.cornerM : frame.lightVolume.farCascade.cornerM;
+    float texelM = nearCascade ? frame.lightVolume.nearCascade.texelM : frame.lightVolume.farCascade.texelM;
+    vec2 planeM = cornerM + (vec2(texel.xy) + 0.5f) * texelM;
+    // Map position from the window plane: invert planeM = eyeOnPlaneM + A mapPosM, A = [eastAxis northAxis].
+    vec2 a = frame.window.eastAxis;
+    vec2 b = frame.window.northAxis;
+    vec2 rel = planeM - frame.window.eyeOnPlaneM;
     float det = a.x * b.y - b.x * a.y;
     vec2 mapPosM = vec2(rel.x * b.y - b.x * rel.y, a.x * rel.y - rel.x * a.y) / det;
-    float altitudeM = frame.shell.x + (float(texel.z) + 0.5f) / float(LIGHT_VOLUME_LEVELS) * (frame.shell.y - frame.shell.x);
+    float altitudeM = frame.shell.lowestBaseM + (float(texel.z) + 0.5f) / float(LIGHT_VOLUME_LEVELS) * (frame.shell.highestTopM - frame.shell.lowestBaseM);
     vec3 p = pointAtMapPosition(mapPosM, altitudeM);
-    uint samples = min(frame.march.y, 6u);
-    uint first = min(uint(frame.marchLod.w), samples);
-    float depth = coneTailDepth(p, keyLightDirection(), first, samples, frame.phaseTerms.w);
-    float opticalDepth = depth * frame.cloudLook.x;
+    uint samples = min(frame.march.coneSamples, 6u);
+    uint first = min(frame.march.fullConeSamples, samples);
+    float depth = coneTailDepth(p, keyLightDirection(), first, samples, frame.look.coneStepM);
+    float opticalDepth = depth * frame.look.extinctionPerM;
     imageStore(lightVolumeOut, texel, vec4(exp(-opticalDepth), diffusionFactor(opticalDepth), 0.0f, 0.0f));
 }

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Temporal reconstruction of the cloud image (docs/model.md).
 //
-// The march marched one pixel of every BxB block this frame (B = frame.reprojection.x: 4, or 2 and 1
-// near and inside a cloud layer; position frame.reprojection.yz in the block) into a block-resolution
+// The march marched one pixel of every BxB block this frame (B = frame.reprojection.blockPx: 4, or 2 and 1
+// near and inside a cloud layer; position frame.reprojection.phasePx in the block) into a block-resolution
 // image; in a turn or a pitch change, it also marched every pixel of the columns or rows the previous
 // frame did not see (shaders/lib/new_lines.glsl), taken as is too. Every other pixel is either its
 // block's fresh pixel, taken as is, or the previous frame's cloud image reprojected: the pixel's ray is
@@ -97,7 +97,7 @@ vec4 cubicHistory(vec2 q)
     vec2 w2 = 0.5f * (-3.0f * f3 + 4.0f * f2 + f);
     vec2 w3 = 0.5f * (f3 - f2);
     vec2 w12 = w1 + w2;  // >= 1 (w0, w3 <= 0 and the four sum to 1)
-    vec2 toUv = 1.0f / vec2(frame.image.xy);
+    vec2 toUv = 1.0f / vec2(uvec2(frame.image.widthPx, frame.image.heightPx));
     vec2 uvInner = (i1 + 0.5f + w2 / w12) * toUv;  // texel i1's centre is at i1 + 0.5
     vec2 uvBefore = (i1 - 0.5f) * toUv;            // the centre of texel i1 - 1 (clamped to the edge)
     vec2 uvAfter = (i1 + 2.5f) * toUv;             // of texel i1 + 2
@@ -115,7 +115,7 @@ vec4 cubicHistory(vec2 q)
 // Fresh pixels per row and column: they sit B pixels apart, at b * B + phase, inside the image.
 ivec2 freshBlockCount(ivec2 phase, int B)
 {
-    return (ivec2(frame.image.xy) - phase + B - 1) / B;
+    return (ivec2(uvec2(frame.image.widthPx, frame.image.heightPx)) - phase + B - 1) / B;
 }
 
 // The fresh pixels interpolated bilinearly at `pixel`: what a pixel without any history shows. Outside
@@ -177,13 +177,13 @@ void loadFreshBox(ivec2 block, ivec2 phase, int B, INOUT(FreshBox) box)
 bool projectPrevious(vec3 v, out vec2 q)
 {
     q = vec2(-1.0f);
-    float z = dot(v, frame.previousForward.xyz);
+    float z = dot(v, frame.reprojection.previous.forwardEnu);
     if (z <= 0.0f)
         return false;
-    vec2 ndc = vec2(dot(v, frame.previousRight.xyz) / (z * frame.previousRight.w),
-                    -dot(v, frame.previousUp.xyz) / (z * frame.previousUp.w));
-    q = (ndc + 1.0f) * 0.5f * vec2(frame.image.xy);
-    return q.x >= 0.0f && q.y >= 0.0f && q.x < float(frame.image.x) && q.y < float(frame.image.y);
+    vec2 ndc = vec2(dot(v, frame.reprojection.previous.rightEnu) / (z * frame.reprojection.previous.halfWidthTan),
+                    -dot(v, frame.reprojection.previous.upEnu) / (z * frame.reprojection.previous.halfHeightTan));
+    q = (ndc + 1.0f) * 0.5f * vec2(uvec2(frame.image.widthPx, frame.image.heightPx));
+    return q.x >= 0.0f && q.y >= 0.0f && q.x < float(frame.image.widthPx) && q.y < float(frame.image.heightPx);
 }
 
 // A pixel not marched this frame (its block is `block`; `box` is shared by the pixels of the block):
@@ -193,7 +193,7 @@ bool projectPrevious(vec3 v, out vec2 q)
 vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshBox) box, OUT(float) depthM,
                       OUT(float) frontM)
 {
-    const bool front = (frame.image.w & FRAME_FLAG_DEPTH_LAYER) != 0u;
+    const bool front = (frame.image.flags & FRAME_FLAG_DEPTH_LAYER) != 0u;
     // Where was this pixel's cloud in the previous frame? Project the direction alone first (exact for
     // anything far away), read the previous depth found there, and project again at that depth (one
     // fixed-point step: follows the parallax of near clouds when the eye moves; exact for a still
@@ -203,7 +203,7 @@ vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
     vec3 dir = viewRayDirection(vec2(pixel) + 0.5f);
     vec2 q = vec2(0.0f);
     vec3 v = dir;
-    bool onScreen = frame.reprojection.w != 0u && projectPrevious(v, q);
+    bool onScreen = frame.reprojection.historyValid != 0u && projectPrevious(v, q);
     ivec2 texel = ivec2(q);
     vec2 previousAlphaDepth = vec2(0.0f);  // at `texel`: alpha, depth channel (cloud_history.glsl)
     float previousDepth = 0.0f;
@@ -213,11 +213,11 @@ vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
         previousAlphaDepth = texelFetch(historyAlphaDepthIn, texel, 0).xy;
         previousDepth = historyDepthM(previousAlphaDepth.y);
         // The previous depth is measured from the previous eye: the distance from this eye.
-        depthGuess = previousDepth > 0.0f ? length(frame.previousEye.xyz + normalize(v) * previousDepth) : 0.0f;
+        depthGuess = previousDepth > 0.0f ? length(frame.reprojection.previous.eyeEnuM + normalize(v) * previousDepth) : 0.0f;
     }
     if (onScreen && depthGuess > 0.0f)
     {
-        v = dir * depthGuess - frame.previousEye.xyz;
+        v = dir * depthGuess - frame.reprojection.previous.eyeEnuM;
         onScreen = projectPrevious(v, q);
         if (onScreen)
         {
@@ -227,7 +227,7 @@ vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
                 previousAlphaDepth = texelFetch(historyAlphaDepthIn, texel, 0).xy;
                 previousDepth = historyDepthM(previousAlphaDepth.y);
             }
-            depthGuess = previousDepth > 0.0f ? length(frame.previousEye.xyz + normalize(v) * previousDepth) : 0.0f;
+            depthGuess = previousDepth > 0.0f ? length(frame.reprojection.previous.eyeEnuM + normalize(v) * previousDepth) : 0.0f;
         }
     }
     bool accept = onScreen;
@@ -243,7 +243,7 @@ vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
         // disagrees with the previous depth found there (the ray crossed a cloud edge of another distance).
         if (previousDepth > 0.0f && depthGuess > 0.0f)
         {
-            float expected = length(dir * depthGuess - frame.previousEye.xyz);
+            float expected = length(dir * depthGuess - frame.reprojection.previous.eyeEnuM);
             accept = abs(previousDepth - expected) <= kDepthTolerance * expected + kDepthToleranceFloorM;
         }
         // Colour clamp against the fresh neighbourhood (not for a still pixel, which keeps its history).
@@ -260,7 +260,7 @@ vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
         depthM = depthGuess;
         // The front found at the depth's history texel, measured from this eye like the depth.
         float previousFront = front ? imageLoad(frontHistoryIn, texel).x : 0.0f;
-        frontM = previousFront > 0.0f ? length(frame.previousEye.xyz + normalize(v) * previousFront) : 0.0f;
+        frontM = previousFront > 0.0f ? length(frame.reprojection.previous.eyeEnuM + normalize(v) * previousFront) : 0.0f;
         return previous;
     }
     // Rejected history (disocclusion, colour clamp) takes the nearest fresh pixel: a sharp value beside a
@@ -275,16 +275,16 @@ vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
 
 void main()
 {
-    const int B = int(frame.reprojection.x);  // 4; 2 or 1 near or inside a cloud layer
-    ivec2 phase = ivec2(int(frame.reprojection.y), int(frame.reprojection.z));
-    uint quadRows = (frame.image.y + RECONSTRUCT_QUAD_PX - 1u) / RECONSTRUCT_QUAD_PX;
+    const int B = int(frame.reprojection.blockPx);  // 4; 2 or 1 near or inside a cloud layer
+    ivec2 phase = ivec2(int(frame.reprojection.phasePx.x), int(frame.reprojection.phasePx.y));
+    uint quadRows = (frame.image.heightPx + RECONSTRUCT_QUAD_PX - 1u) / RECONSTRUCT_QUAD_PX;
     ivec2 quadOrigin = ivec2(permutedId(gl_GlobalInvocationID.xy, quadRows)) * RECONSTRUCT_QUAD_PX;
     FreshBox box;
     box.loaded = false;
     for (int i = 0; i < RECONSTRUCT_QUAD_PX * RECONSTRUCT_QUAD_PX; ++i)
     {
         ivec2 pixel = quadOrigin + ivec2(i % RECONSTRUCT_QUAD_PX, i / RECONSTRUCT_QUAD_PX);
-        if (pixel.x >= int(frame.image.x) || pixel.y >= int(frame.image.y))
+        if (pixel.x >= int(frame.image.widthPx) || pixel.y >= int(frame.image.heightPx))
             continue;
         ivec2 block = pixel / B;
         vec4 cloud;
@@ -297,7 +297,7 @@ void main()
         {
             cloud = imageLoad(freshCloud, freshTexel);
             depthM = imageLoad(freshDepth, freshTexel).x;
-            if ((frame.image.w & FRAME_FLAG_DEPTH_LAYER) != 0u)
+            if ((frame.image.flags & FRAME_FLAG_DEPTH_LAYER) != 0u)
                 frontM = imageLoad(freshFront, freshTexel).x;
         }
         else
@@ -306,7 +306,7 @@ void main()
         imageStore(historyAlphaDepthOut, pixel, uvec4(packHistoryAlphaDepth(cloud.a, depthM), 0u, 0u, 0u));
         // As the march's (cloud_path.glsl cloudDepthLayer): never beyond the depth, the depth where there
         // is none (a history made before the layer was asked for holds 0), 0 without cloud.
-        if ((frame.image.w & FRAME_FLAG_DEPTH_LAYER) != 0u)
+        if ((frame.image.flags & FRAME_FLAG_DEPTH_LAYER) != 0u)
             imageStore(frontHistoryOut, pixel, vec4(frontM > 0.0f ? min(frontM, depthM) : depthM, 0.0f, 0.0f, 0.0f));
     }
 }

@@ -13,15 +13,15 @@ uvec2 permutedId(uvec2 globalId, uint rows)
     return uvec2(globalId.x, py * gl_WorkGroupSize.y + gl_LocalInvocationID.y);
 }
 
-uvec2 permutedPixel(uvec2 globalId) { return permutedId(globalId, frame.image.y); }
+uvec2 permutedPixel(uvec2 globalId) { return permutedId(globalId, frame.image.heightPx); }
 
 // Unit view direction (ENU) through the centre of `pixelCentre` (pixels, y down). An off-centre frustum
-// (a display wall's channel) needs nothing more: cameraForward is the ray through the image centre,
+// (a display wall's channel) needs nothing more: camera.centreRayEnu is the ray through the image centre,
 // shifted from the view axis on the CPU (frame_params.h).
 vec3 viewRayDirection(vec2 pixelCentre)
 {
-    vec2 ndc = (pixelCentre + frame.exposure.zw) / vec2(frame.image.xy) * 2.0f - 1.0f;
-    vec3 d = frame.cameraForward.xyz + ndc.x * frame.cameraRight.w * frame.cameraRight.xyz -
-             ndc.y * frame.cameraUp.w * frame.cameraUp.xyz;
+    vec2 ndc = (pixelCentre + frame.sequence.rayJitterPx) / vec2(uvec2(frame.image.widthPx, frame.image.heightPx)) * 2.0f - 1.0f;
+    vec3 d = frame.camera.centreRayEnu + ndc.x * frame.camera.halfWidthTan * frame.camera.rightEnu -
+             ndc.y * frame.camera.halfHeightTan * frame.camera.upEnu;
     return normalize(d);
 }

@@ -50,24 +50,24 @@ layout(binding = 18, rg32f) uniform writeonly image2D depthLayerOut;
 void main()
 {
     ivec2 pixel = ivec2(permutedPixel(gl_GlobalInvocationID.xy));
-    if (pixel.x >= int(frame.image.x) || pixel.y >= int(frame.image.y))
+    if (pixel.x >= int(frame.image.widthPx) || pixel.y >= int(frame.image.heightPx))
         return;
     vec3 dir = viewRayDirection(vec2(pixel) + 0.5f);
-    float rc = frame.earth.y;
-    float hc = frame.cameraForward.w;
+    float rc = frame.earth.centreToEyeM;
+    float hc = frame.camera.eyeAltitudeM;
 
     // The direction's angles, for the sky-view LUT and again for the aerial-perspective LUT.
     float zenithRad = acos(clamp(dir.z, -1.0f, 1.0f));
     float azimuthRad = enuAzimuth(dir);
     vec3 sky = sampleSkyViewAt(skyViewLut, atmosphere, rc, zenithRad, azimuthRad);
-    bool groundHit = rayGroundDistance(rc, dir.z, hc, frame.earth.x) >= 0.0f;
+    bool groundHit = rayGroundDistance(rc, dir.z, hc, frame.earth.radiusM) >= 0.0f;
     if (!groundHit)
     {
         // Both disks are seen through the same air, the transmittance from the eye along dir: one LUT
         // read, and only on a disk (lavapipe runs both sides of every branch: it paid two reads a pixel).
-        vec3 sun = sunDiskEmission(atmosphere, dir, rc, frame.sunDirection.xyz, frame.sunIrradiance.rgb);
-        vec3 moon = moonDiskEmission(atmosphere, dir, rc, frame.moonDirection.xyz, frame.sunDirection.xyz,
-                                     frame.moonIrradiance.rgb);
+        vec3 sun = sunDiskEmission(atmosphere, dir, rc, frame.light.sunDirectionEnu, frame.light.sunIrradiance);
+        vec3 moon = moonDiskEmission(atmosphere, dir, rc, frame.light.moonDirectionEnu, frame.light.sunDirectionEnu,
+                                     frame.light.moonIrradiance);
         if (sun != vec3(0.0f) || moon != vec3(0.0f))
         {
             vec3 viewTransmittance = sampleTransmittance(transmittanceLut, atmosphere, rc, dir.z);
@@ -78,17 +78,17 @@ void main()
 
     vec4 cloud;
     float depth;
-    const int B = int(frame.reprojection.x);
+    const int B = int(frame.reprojection.blockPx);
     ivec2 block = pixel / max(B, 1);
     // Where this pixel's cloud comes from: the march's image at `source`, or the history.
     bool fresh = true;
     ivec2 source = pixel;
-    if ((frame.image.w & FRAME_FLAG_REPROJECTED) == 0u)
+    if ((frame.image.flags & FRAME_FLAG_REPROJECTED) == 0u)
     {
         cloud = imageLoad(cloudIn, pixel);
         depth = imageLoad(depthIn, pixel).x;
     }
-    else if (pixel == block * B + ivec2(int(frame.reprojection.y), int(frame.reprojection.z)))
+    else if (pixel == block * B + ivec2(int(frame.reprojection.phasePx.x), int(frame.reprojection.phasePx.y)))
     {
         cloud = imageLoad(cloudIn, block);
         depth = imageLoad(depthIn, block).x;
@@ -113,23 +113,23 @@ void main()
         color = sky * (1.0f - cloud.a) + cloud.rgb * transmittance + inscatter * cloud.a;
         cloudSeen = cloud.rgb * transmittance + inscatter * cloud.a;
     }
-    if ((frame.image.w & FRAME_FLAG_SKY_LAYER) != 0u)
+    if ((frame.image.flags & FRAME_FLAG_SKY_LAYER) != 0u)
         imageStore(skyOut, pixel, vec4(sky, 1.0f));
-    if ((frame.image.w & FRAME_FLAG_CLOUD_LAYER) != 0u)
+    if ((frame.image.flags & FRAME_FLAG_CLOUD_LAYER) != 0u)
         imageStore(cloudLayerOut, pixel, vec4(cloudSeen, cloud.a));
-    if ((frame.image.w & FRAME_FLAG_DEPTH_LAYER) != 0u)
+    if ((frame.image.flags & FRAME_FLAG_DEPTH_LAYER) != 0u)
     {
         float front = fresh ? imageLoad(frontIn, source).x : imageLoad(frontHistoryIn, pixel).x;
         // The history's depth is rounded (cloud_history.glsl): the front stays in front of it.
         imageStore(depthLayerOut, pixel, vec4(min(front, depth), depth, 0.0f, 0.0f));
     }
-    if ((frame.image.w & FRAME_FLAG_WRITE_CLOUD) != 0u)
+    if ((frame.image.flags & FRAME_FLAG_WRITE_CLOUD) != 0u)
     {
         imageStore(cloudOut, pixel, cloud);
         imageStore(depthOut, pixel, vec4(depth));
     }
-    if ((frame.image.w & FRAME_FLAG_NO_LINEAR_OUTPUT) == 0u)
+    if ((frame.image.flags & FRAME_FLAG_NO_LINEAR_OUTPUT) == 0u)
         imageStore(linearOut, pixel, vec4(color, 1.0f));
-    vec3 display = encodeSrgb(tonemapAces(color * frame.exposure.x));
+    vec3 display = encodeSrgb(tonemapAces(color * frame.image.exposure));
     imageStore(displayOut, pixel, vec4(display, 1.0f));
 }

@@ -3,7 +3,7 @@
 // cloudDensity, or the test slab), the majorant over a stretch of ray, the stretches of a ray inside the
 // cloud shell, delta tracking to the next real collision and ratio tracking of the transmittance
 // (Woodcock et al. 1965; Novák et al. 2014, "Residual Ratio Tracking for Estimating Attenuation in
-// Participating Media"). Points are eye ENU metres, the earth's centre at (0, 0, -frame.earth.y).
+// Participating Media"). Points are eye ENU metres, the earth's centre at (0, 0, -frame.earth.centreToEyeM).
 // Included by reference_path.comp.glsl after cloud_density.glsl and empty_space.glsl.
 
 // A stretch of ray tried for empty-space skipping first (m); it doubles while the column bounds show
@@ -38,10 +38,10 @@ Medium mediumAt(vec3 p)
         return Medium(inside ? ref.slab.z : 0.0f, ref.slab.w);
     }
     // The real-time march's density at full detail; the detail erosion fades with the distance from the
-    // eye as it does there (frame.marchLod), so that both draw the same clouds.
+    // eye as it does there (frame.march), so that both draw the same clouds.
     DensitySample s = cloudDensity(p, false, length(p));
     float rain = rainAbsorptionFactor(s.rainMmH, s.heightFraction);
-    return Medium(s.density * frame.cloudLook.x * (1.0f + rain), 1.0f / (1.0f + rain));
+    return Medium(s.density * frame.look.extinctionPerM * (1.0f + rain), 1.0f / (1.0f + rain));
 }
 
 // An upper bound of the extinction (1/m) on the stretch [t0, t1] of the ray (o, d): the layer bounds
@@ -58,7 +58,7 @@ float majorantOn(vec3 o, vec3 d, float t0, float t1)
     // The altitude along a straight line is convex in t: lowest at an end or at the point nearest the
     // earth's centre.
     vec2 h = vec2(min(h0, h1), max(h0, h1));
-    float tNearest = -dot(o + vec3(0.0f, 0.0f, frame.earth.y), d);
+    float tNearest = -dot(o + vec3(0.0f, 0.0f, frame.earth.centreToEyeM), d);
     if (tNearest > t0 && tNearest < t1)
         h.x = min(h.x, altitudeAt(o + d * tNearest));
     ivec2 i0;
@@ -69,18 +69,17 @@ float majorantOn(vec3 o, vec3 d, float t0, float t1)
     float bound = 0.0f;
     for (int k = 0; k <= MAX_CLOUD_LAYERS; ++k)
     {
-        vec4 range = frame.layerRangeM[k];
-        if (h.y < range.x || h.x > range.y)
+        if (h.y < frame.layers[k].lowestBaseM || h.x > frame.layers[k].highestTopM)
             continue;
         bound += k == MAX_CLOUD_LAYERS ? ref.phase.w : columns[k];
     }
-    return bound * frame.cloudLook.x;
+    return bound * frame.look.extinctionPerM;
 }
 
 // The shell that holds every cloud: the slab, or the window's lowest base to its highest top.
 vec2 shellAltitudes()
 {
-    return referenceFlag(REFERENCE_FLAG_SLAB) ? vec2(ref.slab.x, ref.slab.y) : vec2(frame.shell.x, frame.shell.y);
+    return referenceFlag(REFERENCE_FLAG_SLAB) ? vec2(ref.slab.x, ref.slab.y) : vec2(frame.shell.lowestBaseM, frame.shell.highestTopM);
 }
 
 // The next stretch of the ray (o, d) inside the shell beyond tFrom (m along the ray): false when there is
@@ -88,13 +87,13 @@ vec2 shellAltitudes()
 bool nextShellStretch(vec3 o, vec3 d, float tFrom, out float tEnter, out float tExit)
 {
     vec3 q = o + d * tFrom;
-    vec3 qc = q + vec3(0.0f, 0.0f, frame.earth.y);
+    vec3 qc = q + vec3(0.0f, 0.0f, frame.earth.centreToEyeM);
     float r = length(qc);
     float h = altitudeAt(q);
     vec2 shell = shellAltitudes();
     float a;
     float b;
-    if (!rayShellInterval(dot(qc, d) / r, h, shell.x, shell.y, frame.earth.x, frame.shell.z, a, b))
+    if (!rayShellInterval(dot(qc, d) / r, h, shell.x, shell.y, frame.earth.radiusM, frame.shell.maxMarchDistanceM, a, b))
         return false;
     tEnter = tFrom + a;
     tExit = tFrom + b;
@@ -104,9 +103,9 @@ bool nextShellStretch(vec3 o, vec3 d, float tFrom, out float tEnter, out float t
 // Distance along (o, d) to the ground, or < 0 when the ray misses it.
 float groundDistance(vec3 o, vec3 d)
 {
-    vec3 oc = o + vec3(0.0f, 0.0f, frame.earth.y);
+    vec3 oc = o + vec3(0.0f, 0.0f, frame.earth.centreToEyeM);
     float r = length(oc);
-    return rayGroundDistance(r, dot(oc, d) / r, altitudeAt(o), frame.earth.x);
+    return rayGroundDistance(r, dot(oc, d) / r, altitudeAt(o), frame.earth.radiusM);
 }
 
 // The state of a tracked ray (delta or ratio tracking), kept in ReferencePathState between dispatches.
@@ -154,7 +153,7 @@ int stretchStep(vec3 o, vec3 d, INOUT(Tracker) k)
         return STRETCH_ENTERED;
     }
     float t1 = max(min(k.t + k.stretchM, k.shellEnd), k.t + minimumAdvance(k.t));
-    bool skipping = !referenceFlag(REFERENCE_FLAG_SLAB) && (frame.image.w & FRAME_FLAG_NO_SKIPPING) == 0u;
+    bool skipping = !referenceFlag(REFERENCE_FLAG_SLAB) && (frame.image.flags & FRAME_FLAG_NO_SKIPPING) == 0u;
     if (skipping && noCloudOnSegment(o, d, k.t, t1))
     {
         k.t = t1;

@@ -12,7 +12,7 @@
 // clouds' ratio-tracked transmittance, and the next direction is drawn from the phase function. Every
 // step of either tracking is one iteration of one loop (a state machine, REFERENCE_MODE_*), so that the
 // work of a dispatch can be bounded. A path
-// that leaves the clouds downward meets a Lambertian ground (frame.ambientSky.w), one that leaves upward
+// that leaves the clouds downward meets a Lambertian ground (frame.ambient.groundAlbedo), one that leaves upward
 // takes the sky-view LUT's radiance in its direction (the LUT is made for the eye's altitude: the air
 // above the clouds as the eye sees it). The eye ray's own first collision makes the alpha and depth; a ray
 // that meets no cloud adds nothing (the composite draws the sky and ground behind).
@@ -75,13 +75,13 @@ float luminanceOf(vec3 c)
 
 float phaseAt(float nu)
 {
-    return referencePhase(int(ref.phase.x), frame.phaseTerms.xyz, ref.phase.y, nu);
+    return referencePhase(int(ref.phase.x), vec3(frame.look.phaseForwardG, frame.look.phaseBackG, frame.look.phaseForwardWeight), ref.phase.y, nu);
 }
 
 // The irradiance of a light arriving at `p` from direction `l` through the atmosphere (no clouds).
 vec3 lightThroughAir(vec3 p, vec3 l, vec3 topIrradiance, float angularRadiusRad)
 {
-    vec3 pc = p + vec3(0.0f, 0.0f, frame.earth.y);
+    vec3 pc = p + vec3(0.0f, 0.0f, frame.earth.centreToEyeM);
     float r = length(pc);
     return topIrradiance * transmittanceToLight(transmittanceLut, atmosphere, r, dot(pc, l) / r, angularRadiusRad);
 }
@@ -95,13 +95,13 @@ void sampleLight(vec3 p, INOUT(uint) rng, out vec3 direction, out vec3 irradianc
     irradiance = vec3(1.0f);
     if (!referenceFlag(REFERENCE_FLAG_UNIT_LIGHT))
     {
-        vec3 sun = lightThroughAir(p, frame.sunDirection.xyz, frame.sunIrradiance.rgb, atmosphere.radii.z);
-        vec3 moon = lightThroughAir(p, frame.moonDirection.xyz, frame.moonIrradiance.rgb, atmosphere.radii.w);
+        vec3 sun = lightThroughAir(p, frame.light.sunDirectionEnu, frame.light.sunIrradiance, atmosphere.radii.z);
+        vec3 moon = lightThroughAir(p, frame.light.moonDirectionEnu, frame.light.moonIrradiance, atmosphere.radii.w);
         float sunWeight = luminanceOf(sun);
         float moonWeight = luminanceOf(moon);
         float pickSun = sunWeight + moonWeight > 0.0f ? sunWeight / (sunWeight + moonWeight) : 1.0f;
         bool sunPicked = randomFloat(rng) < pickSun;
-        direction = sunPicked ? frame.sunDirection.xyz : frame.moonDirection.xyz;
+        direction = sunPicked ? frame.light.sunDirectionEnu : frame.light.moonDirectionEnu;
         irradiance = sunPicked ? sun / max(pickSun, 1e-30f) : moon / max(1.0f - pickSun, 1e-30f);
     }
 }
@@ -111,12 +111,12 @@ vec3 skyRadiance(vec3 d)
 {
     if (referenceFlag(REFERENCE_FLAG_UNIT_LIGHT))
         return vec3(0.0f);
-    return sampleSkyView(skyViewLut, atmosphere, d, frame.earth.y);
+    return sampleSkyView(skyViewLut, atmosphere, d, frame.earth.centreToEyeM);
 }
 
 float groundAlbedo()
 {
-    return referenceFlag(REFERENCE_FLAG_UNIT_LIGHT) ? 0.0f : frame.ambientSky.w;
+    return referenceFlag(REFERENCE_FLAG_UNIT_LIGHT) ? 0.0f : frame.ambient.groundAlbedo;
 }
 
 // The eye ray of a sample: a random point of the pixel, or a cosine-distributed direction about the
@@ -222,13 +222,13 @@ uint afterShadow(INOUT(Path) p, INOUT(Sums) sums)
     if (p.mode == REFERENCE_MODE_SHADOW)
     {
         int model = int(ref.phase.x);
-        float nu = sampleReferencePhaseCos(model, frame.phaseTerms.xyz, ref.phase.y, p.rng);
+        float nu = sampleReferencePhaseCos(model, vec3(frame.look.phaseForwardG, frame.look.phaseBackG, frame.look.phaseForwardWeight), ref.phase.y, p.rng);
         iterations = model == REFERENCE_PHASE_HG_DRAINE ? 32u : 0u;  // sampleDraineCos's loop at most
         p.d = directionAround(p.d, nu, 2.0f * SKY_PI * randomFloat(p.rng));
     }
     else
     {
-        vec3 up = normalize(p.o + vec3(0.0f, 0.0f, frame.earth.y));
+        vec3 up = normalize(p.o + vec3(0.0f, 0.0f, frame.earth.centreToEyeM));
         p.weight *= groundAlbedo();
         p.d = sampleCosineDirection(up, randomFloat(p.rng), randomFloat(p.rng));
     }
@@ -280,7 +280,7 @@ uint escape(INOUT(Path) p, INOUT(Sums) sums)
     }
     // A Lambertian ground under the clouds: its direct light, then a cosine-distributed bounce.
     vec3 g = p.o + p.d * tGround;
-    vec3 up = normalize(g + vec3(0.0f, 0.0f, frame.earth.y));
+    vec3 up = normalize(g + vec3(0.0f, 0.0f, frame.earth.centreToEyeM));
     p.o = g + up * 0.01f;
     return startShadow(p, sums, REFERENCE_MODE_GROUND_SHADOW, up, true);
 }
@@ -292,9 +292,9 @@ const uint DENSITY_ITERATIONS = uint(MAX_CLOUD_LAYERS) + 1u;
 void main()
 {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (pixel.x >= int(frame.image.x) || pixel.y >= int(frame.image.y))
+    if (pixel.x >= int(frame.image.widthPx) || pixel.y >= int(frame.image.heightPx))
         return;
-    uint index = uint(pixel.y) * frame.image.x + uint(pixel.x);
+    uint index = uint(pixel.y) * frame.image.widthPx + uint(pixel.x);
     bool first = ref.control.x == 0u;
     Path p;
     if (first)
@@ -401,14 +401,14 @@ void main()
     float alpha = sum.a / n;
     float cloudDepth = sum.a > 0.0f ? distanceSum / sum.a : 0.0f;
     vec3 dir = viewRayDirection(vec2(pixel) + 0.5f);
-    float hc = frame.cameraForward.w;
-    HighCloudSample high = sampleHighCloud(dir, dir.z, hc, frame.earth.x);
+    float hc = frame.camera.eyeAltitudeM;
+    HighCloudSample high = sampleHighCloud(dir, dir.z, hc, frame.earth.radiusM);
     if (high.alpha > 0.0f && !referenceFlag(REFERENCE_FLAG_UNIT_LIGHT | REFERENCE_FLAG_HEMISPHERE))
     {
         // The reference writes no depth layer: the fronts only fill the struct.
         CloudPath clouds = CloudPath(cloudRadiance, 1.0f - alpha, alpha * cloudDepth, alpha, 0.0f);
         CloudPath highCloud = CloudPath(high.radiance, 1.0f - high.alpha, high.alpha * high.distanceM, high.alpha, 0.0f);
-        CloudPath c = hc > frame.shell.w ? inFrontOf(highCloud, clouds) : inFrontOf(clouds, highCloud);
+        CloudPath c = hc > frame.shell.highCloudAltitudeM ? inFrontOf(highCloud, clouds) : inFrontOf(clouds, highCloud);
         cloudRadiance = c.radiance;
         alpha = 1.0f - c.transmittance;
         cloudDepth = c.depthWeight > 1e-4f ? c.depthWeighted / c.depthWeight : 0.0f;

@@ -34,20 +34,20 @@ layout(push_constant, std430) uniform ShadowBlock { ShadowMapPush shadow; };
 // -2 R sin^2(theta / 2) - hc so that float does not cancel.
 vec3 groundPoint(vec2 mapPosM)
 {
-    float R = frame.earth.x;
+    float R = frame.earth.radiusM;
     float s = length(mapPosM);
     if (s < 1e-3f)
-        return vec3(mapPosM, -frame.cameraForward.w);
+        return vec3(mapPosM, -frame.camera.eyeAltitudeM);
     float theta = s / R;
     float sinHalf = sin(0.5f * theta);
-    return vec3(mapPosM * (R * sin(theta) / s), -2.0f * R * sinHalf * sinHalf - frame.cameraForward.w);
+    return vec3(mapPosM * (R * sin(theta) / s), -2.0f * R * sinHalf * sinHalf - frame.camera.eyeAltitudeM);
 }
 
 // Distance along a ray that leaves the ground (altitude 0) with zenith cosine mu > 0 to altitude a >= 0:
 // the positive root of the ray/sphere equation (shell.glsl; c < 0, so the roots have opposite signs).
 float distanceToAltitude(float mu, float altitudeM)
 {
-    float R = frame.earth.x;
+    float R = frame.earth.radiusM;
     float tNear;
     float tFar;
     raySphereRoots(R, mu, 0.0f, altitudeM, R, tNear, tFar);
@@ -61,7 +61,7 @@ int cloudBands(out vec2 bands[MAX_CLOUD_LAYERS + 1])
     int n = 0;
     for (int k = 0; k <= MAX_CLOUD_LAYERS; ++k)
     {
-        vec2 r = vec2(max(frame.layerRangeM[k].x, 0.0f), frame.layerRangeM[k].y);
+        vec2 r = vec2(max(frame.layers[k].lowestBaseM, 0.0f), frame.layers[k].highestTopM);
         if (r.y <= r.x)
             continue;
         // insertion by base altitude
@@ -99,7 +99,7 @@ float volumetricOpticalDepth(vec3 ground, vec3 lightDir, float mu)
     for (int i = 0; i < n; ++i)
     {
         float t0 = distanceToAltitude(mu, bands[i].x);
-        float t1 = min(distanceToAltitude(mu, bands[i].y), frame.shell.z);
+        float t1 = min(distanceToAltitude(mu, bands[i].y), frame.shell.maxMarchDistanceM);
         if (t1 <= t0)
             continue;
         // Samples shared out by thickness (a band's path length is its thickness / mu for every band).
@@ -110,7 +110,7 @@ float volumetricOpticalDepth(vec3 ground, vec3 lightDir, float mu)
         {
             vec3 q = ground + lightDir * (t0 + (float(k) + 0.5f) * dt);
             bool cheap = depth > SHADOW_CHEAP_OPTICAL_DEPTH;
-            depth += cloudDensity(q, cheap, length(q)).density * frame.cloudLook.x * dt;
+            depth += cloudDensity(q, cheap, length(q)).density * frame.look.extinctionPerM * dt;
             if (depth > SHADOW_MAX_OPTICAL_DEPTH)
                 return SHADOW_MAX_OPTICAL_DEPTH;
         }
@@ -121,8 +121,8 @@ float volumetricOpticalDepth(vec3 ground, vec3 lightDir, float mu)
 // Alpha of the cirrus layer where the light ray from `ground` crosses its sphere.
 float cirrusAlpha(vec3 ground, vec3 lightDir, float mu)
 {
-    float hHigh = frame.shell.w;
-    if ((frame.image.w & FRAME_FLAG_NO_HIGH_CLOUD) != 0u || hHigh <= 0.0f)
+    float hHigh = frame.shell.highCloudAltitudeM;
+    if ((frame.image.flags & FRAME_FLAG_NO_HIGH_CLOUD) != 0u || hHigh <= 0.0f)
         return 0.0f;
     return highCloudAlpha(ground + lightDir * distanceToAltitude(mu, hHigh));
 }
@@ -138,7 +138,7 @@ void main()
     // Column i from the west edge, row j from the north edge (image order).
     vec2 mapPosM = vec2((float(texel.x) + 0.5f) * texelM - halfM, halfM - (float(texel.y) + 0.5f) * texelM);
     vec3 ground = groundPoint(mapPosM);
-    vec3 up = normalize(ground + vec3(0.0f, 0.0f, frame.earth.y));
+    vec3 up = normalize(ground + vec3(0.0f, 0.0f, frame.earth.centreToEyeM));
     vec3 lightDir = shadow.lightDirection.xyz;
     float mu = dot(up, lightDir);
     float transmittance = 0.0f;

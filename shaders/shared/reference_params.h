@@ -9,7 +9,7 @@
 #include "shaders/shared/prelude.h"
 
 // Phase functions the reference can scatter with (ReferencePush::phase.x).
-#define REFERENCE_PHASE_MODEL 0      // the model's two-lobe Henyey-Greenstein (frame.phaseTerms xyz)
+#define REFERENCE_PHASE_MODEL 0      // the model's two-lobe Henyey-Greenstein (frame.look phaseForwardG, phaseBackG, phaseForwardWeight)
 #define REFERENCE_PHASE_HG_DRAINE 1  // Jendersie & d'Eon 2023 HG + Draine blend for droplets of phase.y um
 #define REFERENCE_PHASE_ISOTROPIC 2  // 1 / (4 pi): the tables of plane-parallel transfer (tests)
 
@@ -37,7 +37,7 @@
 // bounds (shaders/shared/column_bounds.h, same levels and texels): channel k of a level-0 texel is an upper
 // bound of layer k's relative density times (1 + rain absorption) at any point whose weather lookups read
 // that texel (0 where the layer has no coverage in its 3x3 neighbourhood); a coarser texel holds the
-// maxima of its 2x2. Times frame.cloudLook.x, summed over the layers a stretch of ray can reach, it is the
+// maxima of its 2x2. Times frame.look.extinctionPerM, summed over the layers a stretch of ray can reach, it is the
 // majorant of the tracking there.
 struct ReferencePush
 {

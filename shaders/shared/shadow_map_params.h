@@ -7,7 +7,7 @@
 // texel (i, j), column i from the west edge and row j from the NORTH edge (image order, top row first),
 // covers the ground point at easting x = (i + 0.5 - size/2) * texelSizeM and northing
 // y = (size/2 - j - 0.5) * texelSizeM, i.e. at arc distance |(x, y)| from the eye along azimuth
-// atan2(x, y). On the GPU that point lies on the eye's osculating sphere (frame.earth.x); its latitude
+// atan2(x, y). On the GPU that point lies on the eye's osculating sphere (frame.earth.radiusM); its latitude
 // and longitude are GeographicLib::AzimuthalEquidistant(WGS84).Reverse(eye, x, y), as for the window.
 //
 // Output image (rgba16f): r = key-light transmittance through every cloud layer [0, 1] (0 also where

@@ -10,7 +10,7 @@
 // use the same window for the same eye: the same clouds.
 //
 // The shaders then look the weather up at the eye's offset from the window centre (FrameParams
-// windowOffsetM / windowAxes), computed here in double with GeographicLib: the eye's position in the
+// window.eyeOnPlaneM, eastAxis, northAxis), computed here in double with GeographicLib: the eye's position in the
 // centre's azimuthal equidistant plane and the images there of the eye's east and north unit vectors
 // (a first-order map from the eye's local plane to the window plane; its error grows as
 // offset x distance / earth radius: < 300 m at 700 km, where texels are 40 km).

@@ -42,52 +42,57 @@ namespace
 // The placement of a volume of `texelM` texels around the eye: its corner snapped in double to a whole
 // number of texels on the window plane, so that frames (and display channels) with eyes in the same
 // texel build the same volume.
-vec4 volumePlacement(const FrameParams& frame, double texelM)
+LightVolumeCascadeParams volumePlacement(const vec2& eyeOnPlaneM, double texelM)
 {
     const double half = 0.5 * double(LIGHT_VOLUME_SIZE);
-    const double cornerX = (std::floor(double(frame.windowOffsetM.x) / texelM) - half) * texelM;
-    const double cornerY = (std::floor(double(frame.windowOffsetM.y) / texelM) - half) * texelM;
-    return vec4(float(cornerX), float(cornerY), float(texelM), 0.0f);
+    const double cornerX = (std::floor(double(eyeOnPlaneM.x) / texelM) - half) * texelM;
+    const double cornerY = (std::floor(double(eyeOnPlaneM.y) / texelM) - half) * texelM;
+    LightVolumeCascadeParams c;
+    std::memset(&c, 0, sizeof c);
+    c.cornerM = vec2(float(cornerX), float(cornerY));
+    c.texelM = float(texelM);
+    return c;
 }
 
 }  // namespace
 
-void placeLightVolume(const QualitySettings& quality, const RenderTuning& tuning, FrameParams& frame)
+LightVolumeParams placeLightVolume(const QualitySettings& quality, const RenderTuning& tuning, const vec2& eyeOnPlaneM,
+                                   bool volumetricCloud, uint64_t marchedRays)
 {
-    frame.lightVolume = vec4(0.0f);
-    frame.lightVolumeFar = vec4(0.0f);
+    LightVolumeParams v;
+    std::memset(&v, 0, sizeof v);
     const uint32_t samples = std::min(quality.lightSamples, 6u);
-    const bool hasVolumetricCloud = frame.shell.y > frame.shell.x;
-    const uint32_t block = std::max(frame.reprojection.x, 1u);
-    const uint64_t rays = uint64_t((frame.image.x + block - 1) / block) * uint64_t((frame.image.y + block - 1) / block);
-    if (quality.lightVolumeTexelM > 0.0 && quality.fullConeSamples < samples && hasVolumetricCloud &&
-        rays >= quality.lightVolumeMinRays)
+    if (quality.lightVolumeTexelM > 0.0 && quality.fullConeSamples < samples && volumetricCloud &&
+        marchedRays >= quality.lightVolumeMinRays)
     {
-        frame.lightVolume = volumePlacement(frame, quality.lightVolumeTexelM);
+        v.nearCascade = volumePlacement(eyeOnPlaneM, quality.lightVolumeTexelM);
         if (tuning.lightVolumeFarCascade)
-            frame.lightVolumeFar = volumePlacement(frame, quality.lightVolumeTexelM * LIGHT_VOLUME_FAR_SCALE);
+            v.farCascade = volumePlacement(eyeOnPlaneM, quality.lightVolumeTexelM * LIGHT_VOLUME_FAR_SCALE);
     }
-    // Where neither volume reaches, lit samples this close to the last cone that marched its far
-    // samples take those (cloud_lighting.glsl ConeTail).
-    frame.lightVolume.w = float(std::max(tuning.coneTailReuseM, 0.0));
-    frame.lightVolumeFar.w = float(std::max(tuning.coneTailReuseBeyondM, 0.0));
+    return v;
+}
+
+uint64_t marchedRays(uint32_t widthPx, uint32_t heightPx, uint32_t blockPx)
+{
+    const uint32_t block = std::max(blockPx, 1u);
+    return uint64_t((widthPx + block - 1) / block) * uint64_t((heightPx + block - 1) / block);
 }
 
 namespace
 {
 
-// `frame` with the camera axes, image size, frame index, sub-pixel jitter and reprojection fields
-// zeroed: what the volume's build does not read.
+// `frame` with the camera axes, the image part (size, flags, exposure), the sequence part (frame index,
+// sub-pixel jitter, animation time: the drift is in the noise offsets), the march jitter and the
+// reprojection part zeroed: what the volume's build does not read.
 FrameParams lightVolumeInputs(const FrameParams& frame)
 {
     FrameParams f = frame;
-    f.cameraRight = f.cameraUp = vec4(0.0f);
-    f.cameraForward = vec4(0.0f, 0.0f, 0.0f, frame.cameraForward.w);  // the eye altitude places the texels
-    f.exposure = vec4(0.0f);
-    f.image = uvec4(0u);
-    f.reprojection = uvec4(0u);
-    f.previousRight = f.previousUp = f.previousForward = f.previousEye = vec4(0.0f);
-    f.worldJitter = vec4(0.0f);
+    std::memset(&f.camera, 0, sizeof f.camera);
+    f.camera.eyeAltitudeM = frame.camera.eyeAltitudeM;  // the eye altitude places the texels
+    std::memset(&f.image, 0, sizeof f.image);
+    std::memset(&f.sequence, 0, sizeof f.sequence);
+    std::memset(&f.reprojection, 0, sizeof f.reprojection);
+    f.march.jitterTexelRad = 0.0f;
     return f;
 }
 
@@ -96,18 +101,19 @@ FrameParams lightVolumeInputs(const FrameParams& frame)
 void recordLightVolume(const PassFrame& f, LightVolumePass& pass, const LightVolumeInputs& in,
                        const FrameParams& frame)
 {
-    if (frame.lightVolume.z <= 0.0f)
+    if (frame.lightVolume.nearCascade.texelM <= 0.0f)
         return;
     LightVolumeKey key;
     key.inputs = lightVolumeInputs(frame);
     key.window = in.windowKey;
     key.valid = true;
-    // FrameParams is all vec4/uvec4 (std140 without padding): bytewise equality is field equality.
+    // FrameParams has no padding (frame_params.h: every part is whole 16-byte slots, unused members
+    // written as zero): bytewise equality is field equality.
     if (pass.key.valid && pass.key.window == key.window &&
         std::memcmp(&pass.key.inputs, &key.inputs, sizeof(FrameParams)) == 0)
         return;
     pass.key = key;
-    for (uint32_t cascade = 0; cascade < (frame.lightVolumeFar.z > 0.0f ? 2u : 1u); ++cascade)
+    for (uint32_t cascade = 0; cascade < (frame.lightVolume.farCascade.texelM > 0.0f ? 2u : 1u); ++cascade)
         dispatch(f.ctx, f.cmd, pass.program, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_SIZE, LIGHT_VOLUME_LEVELS, cascade,
                  {DescriptorInfo(f.frameUniforms), DescriptorInfo(in.weatherWindow, f.samplers.linearClamp),
                   DescriptorInfo(in.noise.base, f.samplers.linearRepeat),

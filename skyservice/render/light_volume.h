@@ -40,15 +40,18 @@ SkyStatus createLightVolumePass(const Context& ctx, MemoryTracker& memory, Light
 void destroyLightVolumePass(const Context& ctx, MemoryTracker& memory, LightVolumePass& pass);
 
 /**
- * Fills frame.lightVolume (and frame.lightVolumeFar, its cascade of LIGHT_VOLUME_FAR_SCALE times wider
- * texels, unless tuning.lightVolumeFarCascade is false): the volume's corner on the window plane, snapped
- * to whole texels so that the
- * texels stay fixed to the ground while the eye moves in a window, and its texel size; z = 0 (no volume)
- * when the quality turns it off, when no cone sample is cheap (nothing to precompute) or when the frame
- * has no volumetric cloud, or marches fewer rays than quality.lightVolumeMinRays (frame.image.xy and the
- * march block frame.reprojection.x must be final).
- **********************************************************************/
-void placeLightVolume(const QualitySettings& quality, const RenderTuning& tuning, FrameParams& frame);
+ * The light volume part of a frame's uniforms: the volume (and its far cascade of LIGHT_VOLUME_FAR_SCALE
+ * times wider texels, unless tuning.lightVolumeFarCascade is false) around the eye at `eyeOnPlaneM` on
+ * the window plane: its corner snapped to whole texels so that the texels stay fixed to the ground while
+ * the eye moves in a window, and its texel size; texelM = 0 (no volume) when the quality turns it off,
+ * when no cone sample is cheap (nothing to precompute), when the frame has no volumetric cloud, or when it
+ * marches fewer rays than quality.lightVolumeMinRays (`marchedRays`: one per march block).
+ */
+LightVolumeParams placeLightVolume(const QualitySettings& quality, const RenderTuning& tuning, const vec2& eyeOnPlaneM,
+                                   bool volumetricCloud, uint64_t marchedRays);
+
+/// The rays the march casts for an image of widthPx x heightPx in blocks of blockPx (1: every pixel).
+uint64_t marchedRays(uint32_t widthPx, uint32_t heightPx, uint32_t blockPx);
 
 /// What the light volume reads: the frame's weather window (and its key) and the noise.
 struct LightVolumeInputs
@@ -58,8 +61,8 @@ struct LightVolumeInputs
     const NoiseTextures& noise;
 };
 
-/// Records the pass that fills the volume for `frame`, then a barrier; nothing when frame.lightVolume.z
-/// is 0 or when the volume already holds these inputs (LightVolumePass::key).
+/// Records the pass that fills the volume for `frame`, then a barrier; nothing when
+/// frame.lightVolume.nearCascade.texelM is 0 or when the volume already holds these inputs (LightVolumePass::key).
 void recordLightVolume(const PassFrame& f, LightVolumePass& pass, const LightVolumeInputs& in,
                        const FrameParams& frame);
 

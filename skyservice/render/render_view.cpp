@@ -7,7 +7,6 @@
 #include "skyservice/render/atmosphere_passes.h"
 #include "skyservice/render/frame_recording.h"
 #include "skyservice/render/frame_setup.h"
-#include "skyservice/render/light_volume.h"
 #include "skyservice/render/shadow_map.h"
 #include "skyservice/render/view_frustum.h"
 #include "skyservice/render/window_upload.h"
@@ -43,17 +42,6 @@ SkyStatus checkRequest(const ViewRequest& req)
     return SkyStatus::success();
 }
 
-double halton(uint32_t index, uint32_t base)
-{
-    double f = 1.0, r = 0.0;
-    for (uint32_t i = index; i > 0; i /= base)
-    {
-        f /= base;
-        r += f * double(i % base);
-    }
-    return r;
-}
-
 void accumulate(const std::vector<uint16_t>& halves, std::vector<double>& sum)
 {
     sum.resize(halves.size());
@@ -70,7 +58,8 @@ std::vector<uint16_t> average(const std::vector<double>& sum, uint32_t frames)
 }
 
 /// The CPU half of a view: everything the frame's uniforms and passes are made from. `in` points into
-/// this struct and at the caller's request and quality: it is neither copied nor moved.
+/// this struct and at the caller's request and quality: it is neither copied nor moved. `params` is
+/// made from `in` for each frame submitted (makeFrameParams).
 struct PreparedView
 {
     CameraFrame camera;
@@ -130,7 +119,7 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
     in.groundIrradiance = v.light.groundIrradiance * v.light.exposure;
     in.groundAlbedo = v.light.groundAlbedo;
     in.exposure = 1.0;
-    v.params = makeFrameParams(in);
+    in.outputs = outputs;
     if (quality.reprojected)
     {
         std::string why;
@@ -138,18 +127,8 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
         r.reconstruct.reprojection.lastDropReason = useHistory ? "" : why;
         r.reconstruct.reprojection.newLines =
             useHistory ? findNewLines(r.reconstruct.reprojection, request, v.camera) : NewLines{};
-        fillReprojectionParams(v.params, r.reconstruct.reprojection, request, v.camera, useHistory);
+        in.reprojection = reprojectionParams(r.reconstruct.reprojection, request, v.camera, useHistory);
     }
-    placeLightVolume(quality, r.tuning, v.params);  // after the march block is known: it counts the rays
-    // The composite's optional outputs (frame_recording.h FrameOutputs).
-    if (outputs.sky)
-        v.params.image.w |= FRAME_FLAG_SKY_LAYER;
-    if (outputs.cloudLayer)
-        v.params.image.w |= FRAME_FLAG_CLOUD_LAYER;
-    if (outputs.depthLayer)
-        v.params.image.w |= FRAME_FLAG_DEPTH_LAYER;
-    if (quality.reprojected && (outputs.cloud || outputs.depth))
-        v.params.image.w |= FRAME_FLAG_WRITE_CLOUD;
     return SkyStatus::success();
 }
 
@@ -163,12 +142,9 @@ void forgetGpuCaches(Renderer& r)
 SkyStatus submitPrepared(Renderer& r, PreparedView& v, const ViewRequest& request, const QualitySettings& quality,
                          uint32_t k, uint32_t frames, FrameTicket& ticket)
 {
-    // Accumulation: each frame has new march jitter (frame index) and a sub-pixel offset (Halton 2,3).
-    // Reprojected frames keep the march jitter of frame 0 (image.z): a pixel marched again gives the same
-    // value, so a still view converges to exactly the full-resolution image.
-    v.params.image.z = k;
-    v.params.exposure.z = frames > 1 ? float(halton(k + 1, 2) - 0.5) : 0.0f;
-    v.params.exposure.w = frames > 1 ? float(halton(k + 1, 3) - 0.5) : 0.0f;
+    v.in.accumulationIndex = k;
+    v.in.accumulationFrames = frames;
+    v.params = makeFrameParams(v.in);
 
     r.currentFrame = (r.currentFrame + 1) % kFramesInFlight;
     FrameContext& frame = recording(r);
@@ -184,7 +160,7 @@ SkyStatus submitPrepared(Renderer& r, PreparedView& v, const ViewRequest& reques
     ticket.context = r.currentFrame;
     ticket.request = request;
     ticket.reprojected = quality.reprojected;
-    ticket.lightVolume = v.params.lightVolume.z > 0.0f;
+    ticket.lightVolume = v.params.lightVolume.nearCascade.texelM > 0.0f;
     if (shadow)
         ticket.shadow.transmittance = reserveShadowMapReadback(r.shadowPass, frame, quality);  // first: a fixed offset
     recordFrame(r, frame, request, v.camera, v.sunMoon, v.in, v.params, ticket.plan, ticket.facts);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 namespace sky
 {
@@ -15,8 +16,6 @@ namespace
 // Ordered-dither (Bayer) matrices of size 4 and 2 (Bayer 1973): entry k is visited on frame k mod n^2.
 constexpr uint32_t kBayer4[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
 constexpr uint32_t kBayer2[2][2] = {{0, 2}, {3, 1}};
-
-vec4 v4(const glm::dvec3& v, double w) { return vec4(float(v.x), float(v.y), float(v.z), float(w)); }
 
 }  // namespace
 
@@ -207,28 +206,32 @@ NewLines findNewLines(const ReprojectionHistory& history, const ViewRequest& vie
     return lines;
 }
 
-void fillReprojectionParams(FrameParams& frame, const ReprojectionHistory& history, const ViewRequest& view,
-                            const CameraFrame& camera, bool useHistory)
+ReprojectionParams reprojectionParams(const ReprojectionHistory& history, const ViewRequest& view,
+                                      const CameraFrame& camera, bool useHistory)
 {
-    uint32_t block = history.block.blockPx;
-    glm::uvec2 phase = reprojectionPhase(history.frameIndex, block);
-    frame.reprojection = uvec4(block, phase.x, phase.y, useHistory ? 1u : 0u);
-    frame.previousRight = vec4(0.0f);
-    frame.previousUp = vec4(0.0f);
-    frame.previousForward = vec4(0.0f);
-    frame.previousEye = vec4(0.0f);
-    frame.newLines = uvec4(0u);
+    ReprojectionParams r;
+    std::memset(&r, 0, sizeof r);  // the unused members too: the light volume compares frames bytewise
+    r.blockPx = history.block.blockPx;
+    const glm::uvec2 phase = reprojectionPhase(history.frameIndex, r.blockPx);
+    r.phasePx = uvec2(phase.x, phase.y);
+    r.historyValid = useHistory ? 1u : 0u;
     if (!useHistory)
-        return;
+        return r;
     const ViewTangents t = viewTangents(view);
     const PreviousAxes prev = previousAxes(history, t, camera);
     const glm::dmat3 ecefToEnu = glm::transpose(camera.enuToEcef);
-    frame.previousRight = v4(prev.right, t.halfWidth);
-    frame.previousUp = v4(prev.up, t.halfHeight);
-    frame.previousForward = v4(prev.forward, 0.0);
-    frame.previousEye = v4(ecefToEnu * (history.lastCamera.eyeEcefM - camera.eyeEcefM), 0.0);
+    r.previous.rightEnu = vec3(prev.right);
+    r.previous.halfWidthTan = float(t.halfWidth);
+    r.previous.upEnu = vec3(prev.up);
+    r.previous.halfHeightTan = float(t.halfHeight);
+    r.previous.forwardEnu = vec3(prev.forward);
+    r.previous.eyeEnuM = vec3(ecefToEnu * (history.lastCamera.eyeEcefM - camera.eyeEcefM));
     const NewLines& lines = history.newLines;
-    frame.newLines = uvec4(lines.columns.first, lines.columns.count, lines.rows.first, lines.rows.count);
+    r.newLines.firstColumn = lines.columns.first;
+    r.newLines.columnCount = lines.columns.count;
+    r.newLines.firstRow = lines.rows.first;
+    r.newLines.rowCount = lines.rows.count;
+    return r;
 }
 
 }  // namespace sky

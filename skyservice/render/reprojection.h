@@ -5,7 +5,7 @@
 // reprojectionPhase(frameIndex) names (a Bayer order: 16 consecutive frames cover all 16 positions).
 // shaders/clouds/reconstruct.comp.glsl builds the full image from those fresh pixels and the previous
 // frame's image. This file keeps what the renderer remembers between frames, decides when that history
-// must be dropped, and fills the reprojection terms of FrameParams in double precision (docs/datums.md):
+// must be dropped, and computes the reprojection part of FrameParams in double precision (docs/datums.md):
 // the previous camera's axes and eye position are expressed in the current eye's ENU frame before
 // they are rounded to float, so the GPU never sees an earth-centred coordinate.
 #pragma once
@@ -122,10 +122,10 @@ bool historyUsable(const ReprojectionHistory& history, const ViewRequest& view, 
 /// maxNewRows; none when the march block is 1 (every pixel is marched anyway).
 NewLines findNewLines(const ReprojectionHistory& history, const ViewRequest& view, const CameraFrame& camera);
 
-/// Fills frame.reprojection (block size history.block.blockPx, its phase), frame.previousRight/Up/Forward
-/// and frame.previousEye for a reprojected frame on `camera` (useHistory false: the reconstruct pass
-/// ignores the history images), and history.newLines in frame.newLines.
-void fillReprojectionParams(FrameParams& frame, const ReprojectionHistory& history, const ViewRequest& view,
-                            const CameraFrame& camera, bool useHistory);
+/// The reprojection part of a reprojected frame's uniforms on `camera`: the block size
+/// history.block.blockPx and its phase, the previous camera (zero when useHistory is false: the
+/// reconstruct pass then ignores the history images) and history.newLines.
+ReprojectionParams reprojectionParams(const ReprojectionHistory& history, const ViewRequest& view,
+                                      const CameraFrame& camera, bool useHistory);
 
 }  // namespace sky

@@ -169,18 +169,16 @@ TEST(LightVolumePlacement, CornerIsOnWholeTexelsAroundTheEye)
     q.lightVolumeMinRays = 0;
     for (float offset : {0.0f, 79.9f, 80.1f, -1234.5f, 5000.0f})
     {
-        FrameParams f{};
-        f.shell = vec4(1000.0f, 3000.0f, 0.0f, 0.0f);
-        f.windowOffsetM = vec4(offset, -0.5f * offset, 0.0f, 0.0f);
-        placeLightVolume(q, RenderTuning{}, f);
-        ASSERT_EQ(f.lightVolume.z, 160.0f);
-        ASSERT_EQ(f.lightVolumeFar.z, 160.0f * LIGHT_VOLUME_FAR_SCALE) << "the far cascade: 320 m texels";
-        for (const vec4& placement : {f.lightVolume, f.lightVolumeFar})
+        const vec2 eyeOnPlaneM(offset, -0.5f * offset);
+        const LightVolumeParams v = placeLightVolume(q, RenderTuning{}, eyeOnPlaneM, true, 0);
+        ASSERT_EQ(v.nearCascade.texelM, 160.0f);
+        ASSERT_EQ(v.farCascade.texelM, 160.0f * LIGHT_VOLUME_FAR_SCALE) << "the far cascade: 320 m texels";
+        for (const LightVolumeCascadeParams& placement : {v.nearCascade, v.farCascade})
             for (int axis = 0; axis < 2; ++axis)
             {
-                const double texelM = double(placement.z);
-                double corner = double(placement[axis]);
-                double eye = double(f.windowOffsetM[axis]);
+                const double texelM = double(placement.texelM);
+                double corner = double(placement.cornerM[axis]);
+                double eye = double(eyeOnPlaneM[axis]);
                 EXPECT_NEAR(corner / texelM, std::round(corner / texelM), 1e-6) << offset;
                 // The eye lies in one of the two middle texels: the volume reaches 7.6-7.7 km to every
                 // side (its cascade 15.2-15.4 km).
@@ -197,35 +195,25 @@ TEST(LightVolumePlacement, CornerIsOnWholeTexelsAroundTheEye)
 TEST(LightVolumePlacement, AbsentWhenItWouldHoldNothing)
 {
     QualitySettings q;
-    FrameParams f{};
-    f.shell = vec4(1000.0f, 3000.0f, 0.0f, 0.0f);
-    f.image = uvec4(1920u, 1080u, 0u, 0u);
-    f.reprojection = uvec4(4u, 0u, 0u, 0u);
-    placeLightVolume(q, RenderTuning{}, f);
-    EXPECT_GT(f.lightVolume.z, 0.0f) << "defaults: a volume";
-    FrameParams empty = f;
-    empty.shell = vec4(0.0f);
-    placeLightVolume(q, RenderTuning{}, empty);
-    EXPECT_EQ(empty.lightVolume.z, 0.0f) << "no volumetric cloud";
+    const vec2 eye(0.0f);
+    const uint64_t rays = marchedRays(1920u, 1080u, 4u);
+    auto texelM = [&](const QualitySettings& quality, const RenderTuning& tuning, bool cloud, uint64_t n) {
+        const LightVolumeParams v = placeLightVolume(quality, tuning, eye, cloud, n);
+        return glm::vec2(v.nearCascade.texelM, v.farCascade.texelM);
+    };
+    EXPECT_GT(texelM(q, RenderTuning{}, true, rays).x, 0.0f) << "defaults: a volume";
+    EXPECT_EQ(texelM(q, RenderTuning{}, false, rays).x, 0.0f) << "no volumetric cloud";
     QualitySettings allDetailed = q;
     allDetailed.fullConeSamples = allDetailed.lightSamples;
-    placeLightVolume(allDetailed, RenderTuning{}, f);
-    EXPECT_EQ(f.lightVolume.z, 0.0f) << "every cone sample live";
+    EXPECT_EQ(texelM(allDetailed, RenderTuning{}, true, rays).x, 0.0f) << "every cone sample live";
     QualitySettings off = q;
     off.lightVolumeTexelM = 0.0;
-    placeLightVolume(off, RenderTuning{}, f);
-    EXPECT_EQ(f.lightVolume.z, 0.0f) << "turned off";
-    EXPECT_EQ(f.lightVolumeFar.z, 0.0f) << "no cascade without the volume";
+    EXPECT_EQ(texelM(off, RenderTuning{}, true, rays).x, 0.0f) << "turned off";
+    EXPECT_EQ(texelM(off, RenderTuning{}, true, rays).y, 0.0f) << "no cascade without the volume";
     RenderTuning noCascade;
     noCascade.lightVolumeFarCascade = false;
-    placeLightVolume(q, noCascade, f);
-    EXPECT_GT(f.lightVolume.z, 0.0f);
-    EXPECT_EQ(f.lightVolumeFar.z, 0.0f) << "cascade turned off";
-    FrameParams small = f;
-    small.image = uvec4(640u, 360u, 0u, 0u);
-    placeLightVolume(q, RenderTuning{}, small);
-    EXPECT_EQ(small.lightVolume.z, 0.0f) << "640x360 reprojected: 14 400 rays";
-    small.reprojection.x = 1u;
-    placeLightVolume(q, RenderTuning{}, small);
-    EXPECT_GT(small.lightVolume.z, 0.0f) << "640x360 full: 230 400 rays";
+    EXPECT_GT(texelM(q, noCascade, true, rays).x, 0.0f);
+    EXPECT_EQ(texelM(q, noCascade, true, rays).y, 0.0f) << "cascade turned off";
+    EXPECT_EQ(texelM(q, RenderTuning{}, true, marchedRays(640u, 360u, 4u)).x, 0.0f) << "640x360 reprojected: 14 400 rays";
+    EXPECT_GT(texelM(q, RenderTuning{}, true, marchedRays(640u, 360u, 1u)).x, 0.0f) << "640x360 full: 230 400 rays";
 }

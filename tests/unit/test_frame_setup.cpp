@@ -39,10 +39,9 @@ glm::dvec3 noisePosition(const EyePose& pose, const glm::dvec3& pointEcef, doubl
     FrameParams f = makeFrameParams(in);
     // What the shader does: rotate the eye-relative ENU offset into earth-fixed axes, add the offset.
     glm::dvec3 enu = glm::transpose(cam.enuToEcef) * (pointEcef - cam.eyeEcefM);
-    glm::dvec3 rotated(glm::dot(glm::dvec3(f.enuToEcef0.x, f.enuToEcef0.y, f.enuToEcef0.z), enu),
-                       glm::dot(glm::dvec3(f.enuToEcef1.x, f.enuToEcef1.y, f.enuToEcef1.z), enu),
-                       glm::dot(glm::dvec3(f.enuToEcef2.x, f.enuToEcef2.y, f.enuToEcef2.z), enu));
-    glm::dvec3 p = rotated + glm::dvec3(f.layerNoiseOffsetM[0].x, f.layerNoiseOffsetM[0].y, f.layerNoiseOffsetM[0].z);
+    glm::dvec3 rotated(glm::dot(glm::dvec3(f.enuToEcef.row0), enu), glm::dot(glm::dvec3(f.enuToEcef.row1), enu),
+                       glm::dot(glm::dvec3(f.enuToEcef.row2), enu));
+    glm::dvec3 p = rotated + glm::dvec3(f.layers[0].noiseOffsetM);
     double m = noiseOffsetModulusM(quality);
     return glm::dvec3(std::fmod(p.x + 10 * m, m), std::fmod(p.y + 10 * m, m), std::fmod(p.z + 10 * m, m));
 }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Off-centre frusta (skyservice/render/view_frustum.h) in the frame's uniforms: the rays that
 // shaders/clouds/view_ray.glsl makes of them reach the frustum's edges, and the previous camera's
-// projection (reconstruct.comp.glsl projectPrevious, fed by fillReprojectionParams) takes each pixel's
+// projection (reconstruct.comp.glsl projectPrevious, fed by reprojectionParams) takes each pixel's
 // ray back to its pixel; a changed frustum drops the history; bad angles are named. In a turn, the
 // columns the previous frame did not see (findNewColumns, marched in full) are those whose rays that
 // projection takes off the previous image.
@@ -18,7 +18,7 @@ using namespace sky;
 namespace
 {
 
-glm::dvec3 xyz(const vec4& v) { return glm::dvec3(v.x, v.y, v.z); }
+glm::dvec3 xyz(const vec3& v) { return glm::dvec3(v.x, v.y, v.z); }
 
 FrameParams frameFor(const CameraFrame& cam, const ViewRequest& request)
 {
@@ -39,18 +39,19 @@ FrameParams frameFor(const CameraFrame& cam, const ViewRequest& request)
 // viewRayDirection of view_ray.glsl, in double on the float uniforms.
 glm::dvec3 viewRay(const FrameParams& f, double xPx, double yPx)
 {
-    const double nx = xPx / f.image.x * 2.0 - 1.0, ny = yPx / f.image.y * 2.0 - 1.0;
-    return glm::normalize(xyz(f.cameraForward) + nx * double(f.cameraRight.w) * xyz(f.cameraRight) -
-                          ny * double(f.cameraUp.w) * xyz(f.cameraUp));
+    const double nx = xPx / f.image.widthPx * 2.0 - 1.0, ny = yPx / f.image.heightPx * 2.0 - 1.0;
+    return glm::normalize(xyz(f.camera.centreRayEnu) + nx * double(f.camera.halfWidthTan) * xyz(f.camera.rightEnu) -
+                          ny * double(f.camera.halfHeightTan) * xyz(f.camera.upEnu));
 }
 
 // projectPrevious of reconstruct.comp.glsl: pixel coordinates of direction `v` in the previous image.
 glm::dvec2 projectPrevious(const FrameParams& f, const glm::dvec3& v)
 {
-    const double z = glm::dot(v, xyz(f.previousForward));
-    const glm::dvec2 ndc(glm::dot(v, xyz(f.previousRight)) / (z * double(f.previousRight.w)),
-                         -glm::dot(v, xyz(f.previousUp)) / (z * double(f.previousUp.w)));
-    return (ndc + 1.0) * 0.5 * glm::dvec2(f.image.x, f.image.y);
+    const PreviousCameraParams& p = f.reprojection.previous;
+    const double z = glm::dot(v, xyz(p.forwardEnu));
+    const glm::dvec2 ndc(glm::dot(v, xyz(p.rightEnu)) / (z * double(p.halfWidthTan)),
+                         -glm::dot(v, xyz(p.upEnu)) / (z * double(p.halfHeightTan)));
+    return (ndc + 1.0) * 0.5 * glm::dvec2(f.image.widthPx, f.image.heightPx);
 }
 
 double tanDeg(double deg) { return std::tan(deg * M_PI / 180.0); }
@@ -83,7 +84,7 @@ TEST(ViewFrustum, EdgeRaysLieAtTheHalfAngles)
     EXPECT_NEAR(tangents(viewRay(f, w / 2, 0.0)).y, tanDeg(12.0), 1e-6) << "upper edge";
     EXPECT_NEAR(tangents(viewRay(f, w / 2, h)).y, -tanDeg(18.0), 1e-6) << "lower edge";
     // The world jitter's texel is a pixel's height at the axis.
-    EXPECT_NEAR(f.worldJitter.x, (tanDeg(12.0) + tanDeg(18.0)) / h, 1e-7);
+    EXPECT_NEAR(f.march.jitterTexelRad, (tanDeg(12.0) + tanDeg(18.0)) / h, 1e-7);
 }
 
 TEST(ViewFrustum, ThePreviousCameraProjectsEachRayBackToItsPixel)
@@ -97,7 +98,7 @@ TEST(ViewFrustum, ThePreviousCameraProjectsEachRayBackToItsPixel)
     history.lastCamera = cam;
     std::string why;
     ASSERT_TRUE(historyUsable(history, request, cam, why)) << why;
-    fillReprojectionParams(f, history, request, cam, true);
+    f.reprojection = reprojectionParams(history, request, cam, true);
     double worst = 0.0;
     for (double y : {0.5, 11.5, 24.0, 47.5})
         for (double x : {0.5, 30.25, 48.0, 95.5})
@@ -105,7 +106,7 @@ TEST(ViewFrustum, ThePreviousCameraProjectsEachRayBackToItsPixel)
     EXPECT_LT(worst, 1e-3) << "pixels";
     // Without the shifted right axis the centre would land tens of pixels off: the check can fail.
     FrameParams centred = f;
-    centred.previousRight = vec4(glm::vec3(cam.rightEnu), f.previousRight.w);
+    centred.reprojection.previous.rightEnu = glm::vec3(cam.rightEnu);
     EXPECT_GT(glm::length(projectPrevious(centred, viewRay(f, 48.0, 24.0)) - glm::dvec2(48.0, 24.0)), 10.0);
 }
 
@@ -168,7 +169,7 @@ NewLines newLinesAfter(const ReprojectionHistory& history, const ViewRequest& vi
     if (f)
     {
         *f = frameFor(cam, view);
-        fillReprojectionParams(*f, h, view, cam, true);
+        f->reprojection = reprojectionParams(h, view, cam, true);
     }
     return h.newLines;
 }
@@ -178,7 +179,7 @@ NewLines newLinesAfter(const ReprojectionHistory& history, const ViewRequest& vi
 // A right turn of one degree brings new columns in at the right border, a left turn at the left one; the
 // band ends where the previous image begins (the projection above: the first column inside it has all
 // three rays on the previous image, the band's last one not); a large turn is capped, no turn or a block
-// of 1 marches none; the band reaches the shader in frame.newLines.
+// of 1 marches none; the band reaches the shader in frame.reprojection.newLines.
 TEST(ViewFrustum, ATurnMarchesTheColumnsThePreviousFrameDidNotSee)
 {
     for (bool asymmetric : {false, true})
@@ -196,8 +197,8 @@ TEST(ViewFrustum, ATurnMarchesTheColumnsThePreviousFrameDidNotSee)
         const LineBand right = turned(1.0, &f);
         ASSERT_GT(right.count, 0u) << asymmetric;
         EXPECT_EQ(right.first + right.count, request.width);
-        EXPECT_EQ(f.newLines.x, right.first);
-        EXPECT_EQ(f.newLines.y, right.count);
+        EXPECT_EQ(f.reprojection.newLines.firstColumn, right.first);
+        EXPECT_EQ(f.reprojection.newLines.columnCount, right.count);
         auto inside = [&](double x) {
             bool all = true;
             for (double y : {0.5, 24.0, 47.5})
@@ -221,7 +222,7 @@ TEST(ViewFrustum, ATurnMarchesTheColumnsThePreviousFrameDidNotSee)
 
 // A pitch change brings new rows in: nose up at the top, nose down at the bottom; the band ends where the
 // previous image begins (the first row inside it has its left, middle and right rays on the previous
-// image, the band's last one not); a large change is capped; the band reaches the shader in frame.newLines.
+// image, the band's last one not); a large change is capped; the band reaches the shader in frame.reprojection.newLines.
 TEST(ViewFrustum, APitchChangeMarchesTheRowsThePreviousFrameDidNotSee)
 {
     for (bool asymmetric : {false, true})
@@ -239,8 +240,8 @@ TEST(ViewFrustum, APitchChangeMarchesTheRowsThePreviousFrameDidNotSee)
         const LineBand up = pitched(1.0, &f);
         ASSERT_GT(up.count, 0u) << asymmetric;
         EXPECT_EQ(up.first, 0u);
-        EXPECT_EQ(f.newLines.z, up.first);
-        EXPECT_EQ(f.newLines.w, up.count);
+        EXPECT_EQ(f.reprojection.newLines.firstRow, up.first);
+        EXPECT_EQ(f.reprojection.newLines.rowCount, up.count);
         auto inside = [&](double y) {
             bool all = true;
             for (double x : {0.5, 48.0, 95.5})
