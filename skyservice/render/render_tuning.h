@@ -15,32 +15,28 @@ struct RenderTuning
     /// Where no light volume reaches, a lit sample within this distance (m) of the last cone that marched
     /// its far (cheap) samples takes those instead of marching its own; its near, detailed samples stay
     /// its own (0: every cone marched in full). The next lit sample in a cloud is tens of metres away, the
-    /// far samples 300 m-4.4 km. Frames of the volumetric scenes are faster at 400 m (BENCHMARKS.md);
-    /// the 320x180 contact sheet of the bench scenes 52.5 dB of 0 (the Cb tower 47 dB). BENCHMARKS.md;
-    /// tests/gpu/test_cone_tail.cpp.
+    /// far samples 300 m-4.4 km, so a neighbour's tail is nearly the sample's own. Speed and picture cost
+    /// of each setting: BENCHMARKS.md, tests/gpu/test_cone_tail.cpp.
     double coneTailReuseM = 400.0;
     /// ...and only lit samples farther than this from the eye (m) do: nearer, the reused tails of points
     /// nearer the cloud's surface brighten the cloud (a sunset deck 1.6/255 on average at 200 m, light
     /// volume off). 15 km is about where the light volume's far cascade ends on the ground (15.4 km); along
     /// a view ray from high up it reaches further (from 10 km up, ~18 km), and a render without the volume
     /// takes tails there that the cascade holds. With the diffuse octave remainder (1 / (1 + k tau) keeps
-    /// light where a taken tail is too short) they brighten a deck seen 10 degrees down from 10 km by 1.8 %
-    /// on average, 34.4 dB of every cone marched on its radiance scale; the cascade's 160 m texels holding
-    /// those tails instead, 43.9 dB (tests/gpu/test_light_volume.cpp, far cascade).
+    /// light where a taken tail is too short) they brighten a deck seen from high up slightly, less than
+    /// the cascade's texels holding those tails would (tests/gpu/test_light_volume.cpp, far cascade).
     double coneTailReuseBeyondM = 15000.0;
     /// Deep lit samples (behind a view transmittance below QualitySettings::detailMinTransmittance) within
     /// this distance (m) of the last cone marched take its light and march none (0: each marches its own).
-    /// What they add reaches the eye through less than a tenth. Faster inside the cloud and in full frames
-    /// of the deck (BENCHMARKS.md); the 320x180 contact sheet 59.9 dB of 0.
+    /// What they add reaches the eye through less than a tenth, so an error in their light hardly shows
+    /// (speed and picture cost: BENCHMARKS.md).
     double deepLightReuseM = 400.0;
     /// Beyond this distance (m) a light cone's detailed near samples (QualitySettings::fullConeSamples) are
     /// taken as one sample over their length (0: never): there the detail erosion has faded out
     /// (detailFadeEndM) and a pixel spans tens of metres. One density lookup fewer per far lit sample, and
     /// the frame's costliest rays are far ones (the sunset and FL350 scenes gain most: BENCHMARKS.md). The
-    /// single sample sees less of a cloud's thin sunlit skin, so the clouds it lights come out brighter
-    /// (+1.2 % in the test); a nearer limit changes more of the picture (the 320x180 contact sheet of the
-    /// bench scenes against 0: 46.2 dB at 25 km, 51.4 dB at 40 km; FL350's deck 39.3 / 43.9 dB).
-    /// BENCHMARKS.md; tests/gpu/test_cone_tail.cpp.
+    /// single sample sees less of a cloud's thin sunlit skin, so the clouds it lights come out brighter;
+    /// a nearer limit changes more of the picture (figures: BENCHMARKS.md, tests/gpu/test_cone_tail.cpp).
     double coneNearMergeBeyondM = 40000.0;
     double detailFadeStartM = 8000.0;  ///< detail erosion fades out from here...
     double detailFadeEndM = 25000.0;   ///< ...to here (beyond, its noise is finer than a pixel)
