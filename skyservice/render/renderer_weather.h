@@ -36,6 +36,7 @@ struct RendererWeather
     /// The window of the eye's node when it is not `window` yet: being copied into `back`, then swapped in.
     std::shared_ptr<const PreparedWindow> wanted;
     WindowCopy back;           ///< the second pair of window images and the copy into them (window_copy.h)
+    bool backFromPrefetch = false;  ///< back.window is a prefetched one copied ahead of the eye, not drawn yet
     WindowPrefetch prefetch;   ///< the next cell's window, made on `worker`
     glm::dvec3 lastEyeEcefM{0.0};  ///< eye of the previous frame: its motion says which cell is next
     std::chrono::steady_clock::time_point lastFrameClock{};  ///< when the previous frame began (real time)

@@ -92,6 +92,13 @@ std::shared_ptr<const PreparedWindow> takeWindow(WindowPrefetch& prefetch,
     return prepareWindow(*weather, key);
 }
 
+std::shared_ptr<const PreparedWindow> takeFinishedWindow(WindowPrefetch& prefetch)
+{
+    if (!prefetch.job.valid() || prefetch.job.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+        return nullptr;
+    return prefetch.job.get();
+}
+
 void prefetchWindow(WindowPrefetch& prefetch, WeatherWorker& worker,
                     const std::shared_ptr<const WeatherSnapshot>& weather, const WindowKey& key)
 {

@@ -97,6 +97,11 @@ std::shared_ptr<const PreparedWindow> takeWindow(WindowPrefetch& prefetch,
                                                  const std::shared_ptr<const WeatherSnapshot>& weather,
                                                  const WindowKey& key);
 
+/// The background window when its job has finished (never waits; null otherwise), without counting it
+/// as used: the renderer copies it to the GPU ahead of the eye (window_upload.h) and counts it when a
+/// frame draws it.
+std::shared_ptr<const PreparedWindow> takeFinishedWindow(WindowPrefetch& prefetch);
+
 /// Starts preparing `key` on `worker` unless it is already being prepared or a job still runs
 /// (one at a time: a started job is never abandoned mid-way). The job keeps its own reference to the
 /// weather, so a setWeather meanwhile is safe (its result is then simply not used).

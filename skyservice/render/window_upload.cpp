@@ -36,6 +36,7 @@ SkyStatus showWantedWindow(Renderer& r, bool usable)
         {
             if (usable)
                 return SkyStatus::success();  // the back images are busy: a later frame copies this one
+            ++w.windowCopiesWaited;
             SKY_TRY(waitWindowCopy(r.ctx, w.back));
         }
         SKY_TRY(startWindowCopy(r.ctx, r.memory, w.back, w.wanted));
@@ -49,6 +50,20 @@ SkyStatus showWantedWindow(Renderer& r, bool usable)
     }
     swapInBack(w);
     return SkyStatus::success();
+}
+
+/// A prefetched window whose job has finished goes into the back images ahead of the eye, so the frame
+/// that enters its cell swaps it in at once: no copy to wait for, the same window a one-shot render makes.
+SkyStatus copyFinishedPrefetch(Renderer& r)
+{
+    RendererWeather& w = r.weather;
+    if (w.wanted || !windowCopyDone(r.ctx, w.back))
+        return SkyStatus::success();  // the back images are taken
+    std::shared_ptr<const PreparedWindow> next = takeFinishedWindow(w.prefetch);
+    if (!next)
+        return SkyStatus::success();
+    w.backFromPrefetch = true;
+    return startWindowCopy(r.ctx, r.memory, w.back, std::move(next));
 }
 
 }  // namespace
@@ -88,7 +103,17 @@ SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const Qual
     if (w.wanted && !(w.wanted->key == key))
         w.wanted.reset();  // the eye left that cell before its window was swapped in
     if (!w.wanted && !(w.window && w.window->key == key))
-        w.wanted = w.back.window && w.back.window->key == key ? w.back.window : takeWindow(w.prefetch, w.snapshot, key);
+    {
+        if (w.back.window && w.back.window->key == key)
+        {
+            w.wanted = w.back.window;
+            if (w.backFromPrefetch)
+                ++w.prefetch.used;  // made on the worker, copied ahead of the eye
+        }
+        else
+            w.wanted = takeWindow(w.prefetch, w.snapshot, key);
+        w.backFromPrefetch = false;
+    }
     if (w.wanted)
         SKY_TRY(showWantedWindow(r, usable));
     // The next node: the first one along the eye's horizontal motion, prefetched once it is within the
@@ -108,10 +133,11 @@ SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const Qual
         {
             WindowKey nextKey = key;
             nextKey.centre = *next;
-            prefetchWindow(w.prefetch, w.worker, w.snapshot, nextKey);
+            if (!(w.back.window && w.back.window->key == nextKey))  // else it is on the GPU already
+                prefetchWindow(w.prefetch, w.worker, w.snapshot, nextKey);
         }
     }
-    return SkyStatus::success();
+    return copyFinishedPrefetch(r);
 }
 
 }  // namespace sky

@@ -53,7 +53,8 @@ public:
     /// Before renderView: hands the renderer the weather this frame (or a later one) should draw.
     /// @param[in] simTimeS the frame's simulated time (s since 1970); request.unixTimeS is its floor.
     void beforeFrame(Renderer& r, const WeatherState& weather, const SimClock& clock, double simTimeS);
-    /// After renderView: notes a staged weather that swapped in or was refused (logged).
+    /// After renderView: notes a staged weather that swapped in or was refused (logged). The renderer says
+    /// which (its stage is no longer pending; a refusal left its reason), so no renderer version is kept.
     void afterFrame(const Renderer& r);
     /// The weather the renderer draws now (the last frame's, after afterFrame).
     const DrawnWeather& drawn() const { return drawn_; }
@@ -64,7 +65,6 @@ private:
     struct Staged
     {
         DrawnWeather weather;
-        uint64_t rendererVersion = 0;
         int direction = 0;  ///< +1 / -1: a held re-sample for a clock running forward / backward; 0: a load
         bool held = false;
     };
