@@ -61,7 +61,7 @@ struct FrameParams
     // column, y: how many columns (0: none); z: first row, w: how many rows.
     uvec4 newLines;
     // The weather window is centred on a lattice node near the eye, not on the eye
-    // (skyservice/earth/window_lattice.h): window-plane position = windowOffsetM.xy + the map position
+    // (skyservice/weather/window_lattice.h): window-plane position = windowOffsetM.xy + the map position
     // (m east, north of the eye) through windowAxes.
     vec4 windowOffsetM;     // xy: the eye's position on the window plane (m); zw: unused
     vec4 windowAxes;        // xy: window-plane image of 1 m east of the eye; zw: of 1 m north

@@ -6,7 +6,7 @@
 #include "shaders/shared/frame_params.h"
 #include "skyservice/render/render_tuning.h"
 #include "skyservice/render/render_types.h"
-#include "skyservice/render/window_provider.h"
+#include "skyservice/weather/window_provider.h"
 #include "skyservice/vk/programs.h"
 
 namespace sky

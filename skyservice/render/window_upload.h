@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The weather window on the GPU for the eye's lattice cell (earth/window_lattice.h), and the prefetch
+// The weather window on the GPU for the eye's lattice cell (weather/window_lattice.h), and the prefetch
 // of the next cell's window on the worker thread (window_provider.h).
 #pragma once
 

@@ -3,7 +3,7 @@
 //
 // The weather is a timeline (a loaded file, or the built-in scene) sampled at whole simulated seconds,
 // a new sample every kWeatherResampleS of simulated time while the clock runs. A new weather reaches
-// the renderer through its staging (render/weather_stage.h): snapshot and window are made on a worker
+// the renderer through its staging (weather/weather_stage.h): snapshot and window are made on a worker
 // thread and swapped in at the first frame after they are ready, so no frame makes a window for it:
 //  - a loaded file (load_weather, the watched folder, SIGHUP) is sampled at the frame's second and
 //    staged at once;

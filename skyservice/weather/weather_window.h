@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The camera-centred weather window: a WeatherSnapshot resampled onto the eye's azimuthal equidistant
-// grid, in the texel layout of shaders/shared/weather_window.h (uploaded as one RGBA16F 2D array texture: render/window_provider.h).
+// grid, in the texel layout of shaders/shared/weather_window.h (uploaded as one RGBA16F 2D array texture: weather/window_provider.h).
 //
 // Sampling rules (OVERVIEW.md); wrap, edges and missing values are LatLonGrid's (weather_ingest/lat_lon_grid.h):
 //  - continuous fields bilinear on the lat/lon grid; cloud type from the nearest cell;

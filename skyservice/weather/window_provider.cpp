@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-#include "skyservice/render/window_provider.h"
+#include "skyservice/weather/window_provider.h"
 
-#include "skyservice/render/column_bounds.h"
+#include "skyservice/weather/column_bounds.h"
 
 #include <glm/gtc/packing.hpp>
 

@@ -3,7 +3,7 @@
 // a gridded weather (cigi_weather_merge.h): the host's regions need cells of a few km around the ownship,
 // a model's grid may have 25 km ones.
 //
-// The rules are the renderer's (skyservice/earth/weather_window.h), through the same sampler (wrap, edges
+// The rules are the renderer's (skyservice/weather/weather_window.h), through the same sampler (wrap, edges
 // and missing values: LatLonGrid, weather_ingest/lat_lon_grid.h), so a regridded snapshot draws as its
 // source does: continuous fields bilinear, cloud type from the nearest cell, a corner whose coverage, base
 // or top is missing counts as coverage 0, outside a regional grid the coverage is 0 and the other fields

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "skyservice/render/window_copy.h"
+#include "skyservice/weather/window_copy.h"
 
 #include <cstring>
 #include <string>

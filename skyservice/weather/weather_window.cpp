@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "skyservice/earth/weather_window.h"
+#include "skyservice/weather/weather_window.h"
 
 #include <GeographicLib/AzimuthalEquidistant.hpp>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "skyservice/service/snapshot_regrid.h"
+#include "skyservice/weather/snapshot_regrid.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 // barrier makes the texels visible to every frame submitted after it.
 #pragma once
 
-#include "skyservice/render/window_provider.h"
+#include "skyservice/weather/window_provider.h"
 #include "skyservice/vk/resources.h"
 
 #include <memory>

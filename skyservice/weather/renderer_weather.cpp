@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "skyservice/render/renderer_weather.h"
+#include "skyservice/weather/renderer_weather.h"
 
 #include "shaders/shared/weather_window.h"
-#include "skyservice/render/column_bounds.h"
+#include "skyservice/weather/column_bounds.h"
 
 namespace sky
 {

@@ -6,10 +6,10 @@
 // (window_upload.h) advances it once per frame, on the frame's thread: the worker only computes.
 #pragma once
 
-#include "skyservice/render/weather_stage.h"
-#include "skyservice/render/weather_worker.h"
-#include "skyservice/render/window_copy.h"
-#include "skyservice/render/window_provider.h"
+#include "skyservice/weather/weather_stage.h"
+#include "skyservice/weather/weather_worker.h"
+#include "skyservice/weather/window_copy.h"
+#include "skyservice/weather/window_provider.h"
 #include "skyservice/vk/resources.h"
 
 #include <chrono>
@@ -30,7 +30,7 @@ struct RendererWeather
     uint64_t versionsIssued = 0;  ///< the last version given out (staged weathers get theirs early)
     WeatherStage stage;           ///< a new weather being prepared on `worker` (weather_stage.h)
     /// The window frames draw, in windowImage and columnBoundsImage (centred on a lattice node near the
-    /// eye, earth/window_lattice.h): frames whose eye stays in that node's cell, with the same weather
+    /// eye, weather/window_lattice.h): frames whose eye stays in that node's cell, with the same weather
     /// and window settings, reuse it.
     std::shared_ptr<const PreparedWindow> window;
     /// The window of the eye's node when it is not `window` yet: being copied into `back`, then swapped in.
