@@ -3,7 +3,8 @@ set(SKY_INGEST_TEST_DIR ${CMAKE_CURRENT_LIST_DIR}/ingest)
 
 add_executable(ingest_weather_tests ${SKY_INGEST_TEST_DIR}/snapshot_file_test.cpp
                ${SKY_INGEST_TEST_DIR}/weather_timeline_test.cpp
-               ${SKY_INGEST_TEST_DIR}/snapshot_hostile_test.cpp)
+               ${SKY_INGEST_TEST_DIR}/snapshot_hostile_test.cpp
+               ${SKY_INGEST_TEST_DIR}/lat_lon_grid_test.cpp)
 target_link_libraries(ingest_weather_tests PRIVATE sky_weather nlohmann_json::nlohmann_json GTest::gtest_main
                       sky_warnings)
 gtest_discover_tests(ingest_weather_tests TEST_PREFIX "ingest." DISCOVERY_TIMEOUT 30 PROPERTIES LABELS cpu)

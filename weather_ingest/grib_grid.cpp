@@ -41,7 +41,7 @@ GribGrid::GribGrid(const LatLonGrid& grid, std::string description)
     : gridType_("regular_ll"), description_(std::move(description)), sourcePoints_(grid.cellCount()), target_(grid)
 {
     const double latA = grid.lat0Deg, latB = grid.lat0Deg + grid.dLatDeg * double(grid.nLat - 1);
-    const bool periodic = wrapsInLongitude(grid);
+    const bool periodic = grid.wrapsInLongitude();
     if (periodic && std::min(latA, latB) < -kGlobalLatitudeDeg && std::max(latA, latB) > kGlobalLatitudeDeg)
         return;
     dataWeight_.resize(grid.cellCount());

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <span>
 #include <cmath>
 
 namespace sky
@@ -13,76 +14,29 @@ namespace sky
 namespace
 {
 
-/// Where a target cell falls on the source grid: four corners and weights, or outside.
-struct SourcePosition
+/// Where each target cell falls on the source grid (LatLonGrid::locate).
+std::vector<GridPoint> positions(const LatLonGrid& src, const LatLonGrid& dst)
 {
-    bool inside = false;
-    std::array<size_t, 4> corner{};
-    std::array<float, 4> weight{};
-    size_t nearest = 0;
-};
-
-std::vector<SourcePosition> positions(const LatLonGrid& src, const LatLonGrid& dst)
-{
-    std::vector<SourcePosition> out(dst.cellCount());
-    const bool wraps = wrapsInLongitude(src);
+    std::vector<GridPoint> out(dst.cellCount());
     for (uint32_t r = 0; r < dst.nLat; ++r)
         for (uint32_t c = 0; c < dst.nLon; ++c)
-        {
-            const double y = (dst.lat0Deg + r * dst.dLatDeg - src.lat0Deg) / src.dLatDeg;
-            double x = std::fmod(dst.lon0Deg + c * dst.dLonDeg - src.lon0Deg, 360.0);
-            if (x < 0)
-                x += 360.0;
-            x /= src.dLonDeg;
-            const double xMax = wraps ? double(src.nLon) : double(src.nLon - 1);
-            if (!wraps && x > xMax + 1e-9 && x - 360.0 / src.dLonDeg >= -1e-9)
-                x -= 360.0 / src.dLonDeg;
-            const double yMax = double(src.nLat - 1);
-            if (!(y >= -1e-9 && y <= yMax + 1e-9 && x >= -1e-9 && x <= xMax + 1e-9))
-                continue;
-            SourcePosition& p = out[dst.index(r, c)];
-            const auto i0 = uint32_t(std::min(std::floor(std::max(y, 0.0)), std::max(yMax - 1, 0.0)));
-            const auto j0 = uint32_t(std::min(std::floor(std::max(x, 0.0)), std::max(xMax - 1, 0.0)));
-            const uint32_t i1 = std::min(i0 + 1, src.nLat - 1);
-            const uint32_t j1 = wraps ? (j0 + 1) % src.nLon : std::min(j0 + 1, src.nLon - 1);
-            const auto fy = float(std::clamp(y - double(i0), 0.0, 1.0));
-            const auto fx = float(std::clamp(x - double(j0), 0.0, 1.0));
-            p.inside = true;
-            p.corner = {src.index(i0, j0 % src.nLon), src.index(i0, j1), src.index(i1, j0 % src.nLon),
-                        src.index(i1, j1)};
-            p.weight = {(1 - fy) * (1 - fx), (1 - fy) * fx, fy * (1 - fx), fy * fx};
-            p.nearest = p.corner[(fy >= 0.5f ? 2 : 0) + (fx >= 0.5f ? 1 : 0)];
-        }
+            out[dst.index(r, c)] = src.locate(dst.lat0Deg + r * dst.dLatDeg, dst.lon0Deg + c * dst.dLonDeg);
     return out;
 }
 
-std::vector<float> sample(const std::vector<float>& v, const std::vector<SourcePosition>& pos, size_t offset = 0)
+/// A source field on the target cells: NaN outside the source grid and where nothing is known.
+std::vector<float> sample(const LatLonGrid& src, std::span<const float> v, const std::vector<GridPoint>& pos)
 {
     if (v.empty())
         return {};
     std::vector<float> out(pos.size(), NAN);
     for (size_t t = 0; t < pos.size(); ++t)
-    {
-        const SourcePosition& p = pos[t];
-        if (!p.inside)
-            continue;
-        float sum = 0, wsum = 0;
-        for (size_t k = 0; k < 4; ++k)
-        {
-            const float x = v[offset + p.corner[k]];
-            if (std::isfinite(x) && p.weight[k] > 0)
-            {
-                sum += p.weight[k] * x;
-                wsum += p.weight[k];
-            }
-        }
-        if (wsum > 0)
-            out[t] = sum / wsum;
-    }
+        if (pos[t].inside)
+            out[t] = src.sample(v, pos[t]);
     return out;
 }
 
-std::vector<uint8_t> nearest(const std::vector<uint8_t>& v, const std::vector<SourcePosition>& pos)
+std::vector<uint8_t> nearest(const std::vector<uint8_t>& v, const std::vector<GridPoint>& pos)
 {
     if (v.empty())
         return {};
@@ -95,14 +49,15 @@ std::vector<uint8_t> nearest(const std::vector<uint8_t>& v, const std::vector<So
 
 double spanLonDeg(const LatLonGrid& g)
 {
-    return wrapsInLongitude(g) ? 360.0 : g.dLonDeg * double(g.nLon - 1);
+    return g.wrapsInLongitude() ? 360.0 : g.dLonDeg * double(g.nLon - 1);
 }
 
 } // namespace
 
 WeatherSnapshot resampleSnapshot(const WeatherSnapshot& s, const LatLonGrid& target)
 {
-    const std::vector<SourcePosition> pos = positions(s.grid, target);
+    const std::vector<GridPoint> pos = positions(s.grid, target);
+    const LatLonGrid& src = s.grid;
     WeatherSnapshot out;
     out.grid = target;
     out.validTimeUnixS = s.validTimeUnixS;
@@ -111,34 +66,35 @@ WeatherSnapshot resampleSnapshot(const WeatherSnapshot& s, const LatLonGrid& tar
     {
         CloudLayerFields o;
         o.name = l.name;
-        o.coverage = sample(l.coverage, pos);
-        o.baseAltitudeM = sample(l.baseAltitudeM, pos);
-        o.topAltitudeM = sample(l.topAltitudeM, pos);
+        o.coverage = sample(src, l.coverage, pos);
+        o.baseAltitudeM = sample(src, l.baseAltitudeM, pos);
+        o.topAltitudeM = sample(src, l.topAltitudeM, pos);
         o.type = nearest(l.type, pos);
-        o.precipitationMmH = sample(l.precipitationMmH, pos);
-        o.windEastMS = sample(l.windEastMS, pos);
-        o.windNorthMS = sample(l.windNorthMS, pos);
+        o.precipitationMmH = sample(src, l.precipitationMmH, pos);
+        o.windEastMS = sample(src, l.windEastMS, pos);
+        o.windNorthMS = sample(src, l.windNorthMS, pos);
         out.layers.push_back(std::move(o));
     }
-    out.high.coverage = sample(s.high.coverage, pos);
-    out.high.altitudeM = sample(s.high.altitudeM, pos);
+    out.high.coverage = sample(src, s.high.coverage, pos);
+    out.high.altitudeM = sample(src, s.high.altitudeM, pos);
     out.high.type = nearest(s.high.type, pos);
-    out.high.windEastMS = sample(s.high.windEastMS, pos);
-    out.high.windNorthMS = sample(s.high.windNorthMS, pos);
-    out.capeJKg = sample(s.capeJKg, pos);
-    out.tropopauseAltitudeM = sample(s.tropopauseAltitudeM, pos);
+    out.high.windEastMS = sample(src, s.high.windEastMS, pos);
+    out.high.windNorthMS = sample(src, s.high.windNorthMS, pos);
+    out.capeJKg = sample(src, s.capeJKg, pos);
+    out.tropopauseAltitudeM = sample(src, s.tropopauseAltitudeM, pos);
     for (const PressureLevelField& f : s.levelFields)
     {
         PressureLevelField o{f.name, f.units, f.pressurePa, {}};
         for (size_t k = 0; k < f.pressurePa.size(); ++k)
         {
-            const std::vector<float> level = sample(f.values, pos, k * s.grid.cellCount());
+            const auto levelValues = std::span<const float>(f.values).subspan(k * src.cellCount(), src.cellCount());
+            const std::vector<float> level = sample(src, levelValues, pos);
             o.values.insert(o.values.end(), level.begin(), level.end());
         }
         out.levelFields.push_back(std::move(o));
     }
     const std::vector<float> ones(s.dataWeight.empty() ? s.grid.cellCount() : 0, 1.0f);
-    out.dataWeight = sample(s.dataWeight.empty() ? ones : s.dataWeight, pos);
+    out.dataWeight = sample(src, s.dataWeight.empty() ? ones : s.dataWeight, pos);
     for (float& w : out.dataWeight)
         w = std::isfinite(w) ? std::clamp(w, 0.0f, 1.0f) : 0.0f;
     return out;
@@ -162,7 +118,7 @@ WeatherSnapshot compositeSnapshots(std::vector<WeatherSnapshot> parts, size_t ma
         const double latEnd = g.lat0Deg + g.dLatDeg * double(g.nLat - 1);
         latMin = std::min({latMin, g.lat0Deg, latEnd});
         latMax = std::max({latMax, g.lat0Deg, latEnd});
-        global = global || wrapsInLongitude(g);
+        global = global || g.wrapsInLongitude();
         const double west = lonRef + wrapLongitudeDeg(g.lon0Deg - lonRef);
         lonMin = std::min(lonMin, west);
         lonMax = std::max(lonMax, west + spanLonDeg(g));

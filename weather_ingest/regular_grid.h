@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // GridField: one 2D field on a regular latitude/longitude grid, the common currency of the decoders,
-// and the few operations the mapping needs on it.
+// and the few operations the mapping needs on it (sampling: LatLonGrid::sample, lat_lon_grid.h).
 #pragma once
 
 #include "weather_ingest/weather_snapshot.h"
@@ -19,23 +19,9 @@ struct GridField
     size_t invalidCount = 0;  ///< NaN/inf values in the data that were not flagged missing (stored as NaN)
 };
 
-/// @return lon wrapped into [-180, 180) (degrees).
-double wrapLongitudeDeg(double lonDeg);
-
 /// @return true when both grids have the same shape and, within toleranceDeg, the same origin and
 ///   spacing (longitudes compared modulo 360, so 0..357.5 equals -180..177.5 only if the origins agree).
 bool sameGrid(const LatLonGrid& a, const LatLonGrid& b, double toleranceDeg = 1e-6);
-
-/// @return true when the grid's columns go all the way round (nLon * dLonDeg == 360 within 1e-6).
-bool wrapsInLongitude(const LatLonGrid& grid);
-
-/// Bilinear interpolation at a point; longitudes in any convention; wraps on global grids.
-///
-/// @param[in] field source field.
-/// @param[in] latDeg latitude (degrees).
-/// @param[in] lonDeg longitude (degrees).
-/// @return the interpolated value; NaN outside the grid or when a needed corner is NaN.
-float sampleBilinear(const GridField& field, double latDeg, double lonDeg);
 
 /// Seconds since 1970-01-01T00:00:00Z of a proleptic Gregorian UTC date and time.
 int64_t unixTimeFromCivil(int year, int month, int day, int hour, int minute, int second);

@@ -15,12 +15,15 @@
 //  - Coverage: fraction [0,1]. Precipitation rate: mm/h (equivalently kg m^-2 h^-1). CAPE: J/kg.
 //    Wind: m/s, positive towards east (U) and north (V).
 //  - Missing values: NaN in a field means "unknown" and is treated as no cloud by the renderer.
+//  - Sampling between nodes (wrap, edges, missing values): LatLonGrid::sample, lat_lon_grid.h.
 //  - No data: a regional model covers only part of its grid. dataWeight (optional) says, per cell, how much
 //    of the weather there is this snapshot's: 1 inside the model's domain, 0 outside it (every field NaN
 //    there), and a smooth ramp from 0 to 1 over the outer 5 % of the domain. A renderer blends
 //    coverage * dataWeight + (what another source says there, else clear sky) * (1 - dataWeight), so a
 //    domain edge is soft, not a wall. Empty: 1 everywhere (a global model).
 #pragma once
+
+#include "weather_ingest/lat_lon_grid.h"
 
 #include <array>
 #include <cstdint>
@@ -48,20 +51,6 @@ enum class CloudType : uint8_t
     Nimbostratus = 8,
     Stratocumulus = 9,
     Stratus = 10,
-};
-
-/// A regular latitude/longitude grid (degrees).
-struct LatLonGrid
-{
-    double lat0Deg = 0;  ///< latitude of row 0 (degrees)
-    double lon0Deg = 0;  ///< longitude of column 0 (degrees)
-    double dLatDeg = 1;  ///< row spacing (degrees, may be negative)
-    double dLonDeg = 1;  ///< column spacing (degrees, > 0)
-    uint32_t nLat = 0;   ///< rows
-    uint32_t nLon = 0;   ///< columns
-
-    size_t cellCount() const { return size_t(nLat) * size_t(nLon); }
-    size_t index(uint32_t iLat, uint32_t iLon) const { return size_t(iLat) * nLon + iLon; }
 };
 
 /// One volumetric cloud layer: every vector has grid.cellCount() values.

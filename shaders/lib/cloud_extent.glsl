@@ -7,7 +7,7 @@
 // reach the coverage threshold the density is 0 whatever the noise: above the domes of a cumulus layer of
 // coverage 0.4 (its top 30 %), in the thin edge of an anvil. cloudDensity then skips the noise lookups and
 // does not count the point as inside the layer, so the march's search may jump over such stretches, and the
-// column bounds (skyservice/render/column_bounds.cpp) bound each column by the heights where cloud can be.
+// column bounds (skyservice/weather/column_bounds.cpp) bound each column by the heights where cloud can be.
 #ifndef SKY_LIB_CLOUD_EXTENT_GLSL
 #define SKY_LIB_CLOUD_EXTENT_GLSL
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Radial warp of the weather window (skyservice/earth/weather_window.h, windowWarpM, is the same formula
+// Radial warp of the weather window (skyservice/weather/weather_window.h, windowWarpM, is the same formula
 // in double): q = p (E + r0) / (|p| + r0). Fine texels near the eye, coarse toward the horizon.
 
 // Window-plane position q (metres) of the point at map position p (metres east/north of the eye).

@@ -5,7 +5,7 @@
 // columns it crosses (shaders/clouds/empty_space.glsl), instead of sampling empty air step by step:
 // looking up through the shell or grazing above a deck, most search samples found nothing.
 //
-// Built on the CPU with the window (skyservice/render/column_bounds.h). Level 0 is conservative for the
+// Built on the CPU with the window (skyservice/weather/column_bounds.h). Level 0 is conservative for the
 // bilinear weather lookups: a point inside texel c's cell interpolates texels of c's 3x3 neighbourhood, so
 // a layer counts at c when its coverage reaches CLOUD_COVERAGE_MIN anywhere in that neighbourhood, with
 // the lowest base and highest top found there (the anvil slice is one more layer). Level l >= 1 texel

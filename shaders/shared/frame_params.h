@@ -40,7 +40,7 @@ struct EarthParams
     float unused1;
 };
 
-// The weather window (skyservice/earth/window_lattice.h): it is centred on a lattice node near the eye,
+// The weather window (skyservice/weather/window_lattice.h): it is centred on a lattice node near the eye,
 // not on the eye; window-plane position = eyeOnPlaneM + the map position (m east, north of the eye)
 // through eastAxis and northAxis.
 struct WindowParams

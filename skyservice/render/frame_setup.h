@@ -8,8 +8,8 @@
 #include "skyservice/render/frame_outputs.h"
 #include "skyservice/render/render_tuning.h"
 #include "skyservice/render/render_types.h"
-#include "skyservice/earth/window_lattice.h"
-#include "skyservice/render/window_analysis.h"
+#include "skyservice/weather/window_lattice.h"
+#include "skyservice/weather/window_analysis.h"
 #include "skyservice/sky/ephemeris.h"
 
 #include <optional>

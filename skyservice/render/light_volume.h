@@ -8,7 +8,7 @@
 #include "skyservice/render/pass_frame.h"
 #include "skyservice/render/render_tuning.h"
 #include "skyservice/render/render_types.h"
-#include "skyservice/render/window_provider.h"
+#include "skyservice/weather/window_provider.h"
 #include "skyservice/vk/programs.h"
 
 namespace sky

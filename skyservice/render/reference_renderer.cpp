@@ -4,7 +4,7 @@
 #include "shaders/shared/column_bounds.h"
 #include "shaders/shared/reference_params.h"
 #include "skyservice/render/atmosphere_passes.h"
-#include "skyservice/render/column_bounds.h"
+#include "skyservice/weather/column_bounds.h"
 #include "skyservice/render/frame_recording.h"
 
 #include <algorithm>

@@ -25,7 +25,7 @@
 #include "skyservice/render/frame_context.h"
 #include "skyservice/render/render_tuning.h"
 #include "skyservice/render/render_types.h"
-#include "skyservice/render/renderer_weather.h"
+#include "skyservice/weather/renderer_weather.h"
 #include "skyservice/render/light_volume.h"
 #include "skyservice/render/march_pass.h"
 #include "skyservice/render/noise_textures.h"

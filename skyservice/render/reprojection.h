@@ -11,7 +11,7 @@
 #pragma once
 
 #include "shaders/shared/frame_params.h"
-#include "skyservice/earth/weather_window.h"
+#include "skyservice/weather/weather_window.h"
 #include "skyservice/render/render_types.h"
 
 #include <glm/glm.hpp>
@@ -105,7 +105,7 @@ glm::uvec2 reprojectionPhase(uint32_t frameIndex, uint32_t blockPx = 4);
  * layer (between its base and top, coverage above kNearCloudMinCoverage within kNearCloudRadiusM) 1, or
  * `insideBlockPx` (2 or 1) where that coverage reaches kOvercastCoverage; 2 within kNearCloudM of such a
  * layer, else 4. `eyeOnWindowM` is where the eye lies
- * on the window plane (m; earth/window_lattice.h: windows are centred on a lattice node near the eye).
+ * on the window plane (m; weather/window_lattice.h: windows are centred on a lattice node near the eye).
  */
 MarchBlock chooseMarchBlock(const WeatherWindow& window, double eyeAltitudeM,
                             const glm::dvec2& eyeOnWindowM = glm::dvec2(0.0), uint32_t insideBlockPx = 2);

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/service/cigi_weather_merge.h"
 
-#include "skyservice/service/snapshot_regrid.h"
+#include "skyservice/weather/snapshot_regrid.h"
 
 #include <algorithm>
 #include <cmath>

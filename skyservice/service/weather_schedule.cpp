@@ -45,8 +45,8 @@ void WeatherSchedule::stage(Renderer& r, const WeatherState& weather, int64_t sa
     s.weather = DrawnWeather{weather.version, weatherName(weather), sampleAtUnixS};
     s.direction = direction;
     s.held = direction != 0;
-    s.rendererVersion = stageWeather(r, sampler(weather, sampleAtUnixS),
-                                     s.held ? StageSwap::WhenReleased : StageSwap::WhenReady, history);
+    stageWeather(r, sampler(weather, sampleAtUnixS), s.held ? StageSwap::WhenReleased : StageSwap::WhenReady,
+                 history);
     staged_ = s;
     lastServiceVersion_ = weather.version;
 }
@@ -103,16 +103,17 @@ void WeatherSchedule::beforeFrame(Renderer& r, const WeatherState& weather, cons
 
 void WeatherSchedule::afterFrame(const Renderer& r)
 {
-    if (!staged_)
+    if (!staged_ || weatherStagePending(r))
         return;
-    if (r.weather.version == staged_->rendererVersion)
+    // The stage ended: swapped in (the stage clears its last error then), or refused with a reason.
+    if (r.weather.stage.lastError.empty())
     {
         drawn_ = staged_->weather;
         staged_.reset();
         SKY_LOG_DEBUG("weather %s sampled at %s drawn from this frame on", drawn_.source.c_str(),
                       formatIso8601Utc(drawn_.sampledAtUnixS).c_str());
     }
-    else if (!weatherStagePending(r))
+    else
     {
         SKY_LOG_ERROR("weather %s at %s: %s (keeping %s)", staged_->weather.source.c_str(),
                       formatIso8601Utc(staged_->weather.sampledAtUnixS).c_str(), r.weather.stage.lastError.c_str(),

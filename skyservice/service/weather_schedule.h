@@ -3,7 +3,7 @@
 //
 // The weather is a timeline (a loaded file, or the built-in scene) sampled at whole simulated seconds,
 // a new sample every kWeatherResampleS of simulated time while the clock runs. A new weather reaches
-// the renderer through its staging (render/weather_stage.h): snapshot and window are made on a worker
+// the renderer through its staging (weather/weather_stage.h): snapshot and window are made on a worker
 // thread and swapped in at the first frame after they are ready, so no frame makes a window for it:
 //  - a loaded file (load_weather, the watched folder, SIGHUP) is sampled at the frame's second and
 //    staged at once;
@@ -53,7 +53,8 @@ public:
     /// Before renderView: hands the renderer the weather this frame (or a later one) should draw.
     /// @param[in] simTimeS the frame's simulated time (s since 1970); request.unixTimeS is its floor.
     void beforeFrame(Renderer& r, const WeatherState& weather, const SimClock& clock, double simTimeS);
-    /// After renderView: notes a staged weather that swapped in or was refused (logged).
+    /// After renderView: notes a staged weather that swapped in or was refused (logged). The renderer says
+    /// which (its stage is no longer pending; a refusal left its reason), so no renderer version is kept.
     void afterFrame(const Renderer& r);
     /// The weather the renderer draws now (the last frame's, after afterFrame).
     const DrawnWeather& drawn() const { return drawn_; }
@@ -64,7 +65,6 @@ private:
     struct Staged
     {
         DrawnWeather weather;
-        uint64_t rendererVersion = 0;
         int direction = 0;  ///< +1 / -1: a held re-sample for a clock running forward / backward; 0: a load
         bool held = false;
     };

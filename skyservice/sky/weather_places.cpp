@@ -27,20 +27,10 @@ float layerCoverage(const WeatherSnapshot& w, size_t layer, size_t cell)
     return layer < w.layers.size() ? valueAt(w.layers[layer].coverage, cell) : 0.0f;
 }
 
-double wrapLonDeg(double lonDeg)
-{
-    double l = std::fmod(lonDeg + 180.0, 360.0);
-    if (l < 0.0)
-        l += 360.0;
-    return l - 180.0;
-}
-
 class Neighbourhood
 {
   public:
-    explicit Neighbourhood(const LatLonGrid& g) : grid_(g), global_(std::abs(double(g.nLon) * g.dLonDeg - 360.0) < 1e-4)
-    {
-    }
+    explicit Neighbourhood(const LatLonGrid& g) : grid_(g), global_(g.wrapsInLongitude()) {}
 
     // Calls f(cell) for every cell within `ring` rows and columns of (i, j); false if any f is false.
     // Cells past a regional grid's edge count as failing: the place must be surrounded by known data.
@@ -90,7 +80,7 @@ const char* typeName(uint8_t type)
 std::string formatLatLon(double latDeg, double lonDeg)
 {
     char text[64];
-    double lon = wrapLonDeg(lonDeg);
+    double lon = wrapLongitudeDeg(lonDeg);
     std::snprintf(text, sizeof text, "%.1f%c %.1f%c", std::abs(latDeg), latDeg >= 0.0 ? 'N' : 'S', std::abs(lon),
                   lon >= 0.0 ? 'E' : 'W');
     return text;
@@ -110,7 +100,7 @@ WeatherPlace findWeatherPlace(const WeatherSnapshot& w, PlaceKind kind, const Pl
             continue;
         for (uint32_t j = 0; j < g.nLon; ++j)
         {
-            const double lonDeg = wrapLonDeg(g.lon0Deg + double(j) * g.dLonDeg);
+            const double lonDeg = wrapLongitudeDeg(g.lon0Deg + double(j) * g.dLonDeg);
             const size_t cell = g.index(i, j);
             double score = -1.0;
             if (kind == PlaceKind::LowDeck)

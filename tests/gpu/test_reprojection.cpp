@@ -258,7 +258,7 @@ TEST(ReprojectionCpu, MarchBlockIsFinerNearAndInsideACloudLayer)
     resampleWeatherWindow(clearSky(), 45.0, 7.0, 800000.0, window, WEATHER_WINDOW_SIZE, 150000.0);
     EXPECT_EQ(chooseMarchBlock(window, 1800.0).blockPx, 4u) << "no cloud around the eye";
 
-    // Windows are centred on a lattice node near the eye, not on it (earth/window_lattice.h): the rule
+    // Windows are centred on a lattice node near the eye, not on it (weather/window_lattice.h): the rule
     // looks around the eye's place on the window. A cell 3.2 km east of the window centre, 1 km wide.
     resampleWeatherWindow(isolatedCell(45.0, 7.04, 1000.0, CloudType::Cumulus, 1500.0f, 2100.0f), 45.0, 7.0,
                           800000.0, window, WEATHER_WINDOW_SIZE, 150000.0);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// A new weather staged off the frame path (skyservice/render/weather_stage.h), on the GPU (lavapipe,
+// A new weather staged off the frame path (skyservice/weather/weather_stage.h), on the GPU (lavapipe,
 // validation on, small images, test quality):
 //  - frames keep drawing the old weather, byte for byte, until the new one's window is ready; the first
 //    frame that draws it is byte for byte a one-shot render with it; no window is made on the frame path;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The weather window for a moving eye (skyservice/earth/window_lattice.h, render/window_provider.h), on
+// The weather window for a moving eye (skyservice/weather/window_lattice.h, weather/window_provider.h), on
 // the GPU (lavapipe, validation on, small images, test quality):
 //  - an eye that crosses the edge of a lattice cell (its window is re-centred 2.2 km away) sees its
 //    clouds where it saw them a few metres before: the shaders place the eye on the window correctly;

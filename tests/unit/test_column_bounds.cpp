@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-// The weather window's column-bounds pyramid (skyservice/render/column_bounds.h): conservative for the
+// The weather window's column-bounds pyramid (skyservice/weather/column_bounds.h): conservative for the
 // bilinear weather lookups (a covered texel bounds its whole 3x3 neighbourhood), min/max up the levels,
 // the anvil slab counted, unknown altitudes unbounded, empty columns empty; within a layer, only the heights
 // where its genus may hold cloud at the neighbourhood's coverage (cloud_extent.glsl: the cumulus domes).
-#include "skyservice/render/cloud_extent.h"
-#include "skyservice/render/column_bounds.h"
+#include "skyservice/weather/cloud_extent.h"
+#include "skyservice/weather/column_bounds.h"
 
 #include "shaders/shared/column_bounds.h"
 #include "shaders/shared/prelude.h"

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// CPU side of a new weather prepared off the frame path (skyservice/render/weather_stage.h) and of the
-// speed-dependent window look-ahead (render/window_provider.h): no GPU, so these run under ASan/UBSan.
+// CPU side of a new weather prepared off the frame path (skyservice/weather/weather_stage.h) and of the
+// speed-dependent window look-ahead (weather/window_provider.h): no GPU, so these run under ASan/UBSan.
 //  - a staged weather is never handed out by the step that starts its job, swaps in with exactly the
 //    window a frame would make itself for the eye's node, waits for its release when held, is made
 //    again for the node the eye moved to, and a newer stage supersedes an older one;
@@ -9,7 +9,7 @@
 //  - the look-ahead covers 1.5 s of motion, within [1.5 km, 20 km]; the node prefetched is the one the
 //    eye reaches next, named from the moment it enters the cell before, even at 3000 m/s.
 #include "skyservice/render/render_types.h"
-#include "skyservice/render/weather_stage.h"
+#include "skyservice/weather/weather_stage.h"
 #include "skyservice/sky/builtin_weather.h"
 
 #include <GeographicLib/Geodesic.hpp>

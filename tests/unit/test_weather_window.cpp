@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Resampling a WeatherSnapshot onto the camera-centred window (skyservice/earth/weather_window.h).
-#include "skyservice/earth/weather_window.h"
+// Resampling a WeatherSnapshot onto the camera-centred window (skyservice/weather/weather_window.h).
+#include "skyservice/weather/weather_window.h"
 
 #include "skyservice/sky/builtin_weather.h"
 

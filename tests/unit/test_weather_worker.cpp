@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The renderer's one weather worker (skyservice/render/weather_worker.h): every job runs on its one
+// The renderer's one weather worker (skyservice/weather/weather_worker.h): every job runs on its one
 // thread, one at a time; a staged weather's job goes before prefetches queued earlier; a job's exception
 // reaches its future; the destructor runs what is still queued.
-#include "skyservice/render/weather_worker.h"
+#include "skyservice/weather/weather_worker.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The weather window's lattice of centres and the eye's place on a window (skyservice/earth/
 // window_lattice.h), against GeographicLib's geodesics.
-#include "skyservice/earth/window_lattice.h"
+#include "skyservice/weather/window_lattice.h"
 
 #include <GeographicLib/Geodesic.hpp>
 #include <gtest/gtest.h>

@@ -55,8 +55,11 @@ size_t writeInput(const std::string& samplePath, const std::string& out, const s
         f.values.resize(target.cellCount());
         for (uint32_t r = 0; r < target.nLat; ++r)
             for (uint32_t c = 0; c < target.nLon; ++c)
-                f.values[target.index(r, c)] = sky::sampleBilinear(source, target.lat0Deg + r * target.dLatDeg,
-                                                                   target.lon0Deg + c * target.dLonDeg);
+            {
+                const sky::GridPoint p =
+                    source.grid.locate(target.lat0Deg + r * target.dLatDeg, target.lon0Deg + c * target.dLonDeg);
+                f.values[target.index(r, c)] = p.inside ? source.grid.sample(source.values, p) : NAN;
+            }
         fields.push_back(std::move(f));
     }
     sky::writeGribFile(out, fields);

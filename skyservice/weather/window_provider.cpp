@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-#include "skyservice/render/window_provider.h"
+#include "skyservice/weather/window_provider.h"
 
-#include "skyservice/render/column_bounds.h"
+#include "skyservice/weather/column_bounds.h"
 
 #include <glm/gtc/packing.hpp>
 
@@ -90,6 +90,13 @@ std::shared_ptr<const PreparedWindow> takeWindow(WindowPrefetch& prefetch,
     }
     ++prefetch.madeOnFrame;
     return prepareWindow(*weather, key);
+}
+
+std::shared_ptr<const PreparedWindow> takeFinishedWindow(WindowPrefetch& prefetch)
+{
+    if (!prefetch.job.valid() || prefetch.job.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+        return nullptr;
+    return prefetch.job.get();
 }
 
 void prefetchWindow(WindowPrefetch& prefetch, WeatherWorker& worker,

@@ -3,7 +3,7 @@
 // which lets the march skip empty stretches of its rays.
 #pragma once
 
-#include "skyservice/earth/weather_window.h"
+#include "skyservice/weather/weather_window.h"
 
 #include <cstdint>
 #include <vector>

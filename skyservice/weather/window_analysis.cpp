@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "skyservice/render/window_analysis.h"
+#include "skyservice/weather/window_analysis.h"
 
 #include "shaders/shared/weather_window.h"
 

@@ -3,11 +3,11 @@
 // a gridded weather (cigi_weather_merge.h): the host's regions need cells of a few km around the ownship,
 // a model's grid may have 25 km ones.
 //
-// The rules are the renderer's (skyservice/earth/weather_window.h), so a regridded snapshot draws as its
-// source does: continuous fields bilinear, NaN corners left out (a corner whose coverage, base or top is NaN
-// counts as coverage 0), cloud type from the nearest cell; a grid whose nLon * dLonDeg is 360 wraps in
-// longitude and is clamped at the poles; outside a regional grid the coverage is 0 and the other fields take
-// the value at the nearest edge. The source's dataWeight is folded into every coverage (the result has
+// The rules are the renderer's (skyservice/weather/weather_window.h), through the same sampler (wrap, edges
+// and missing values: LatLonGrid, weather_ingest/lat_lon_grid.h), so a regridded snapshot draws as its
+// source does: continuous fields bilinear, cloud type from the nearest cell, a corner whose coverage, base
+// or top is missing counts as coverage 0, outside a regional grid the coverage is 0 and the other fields
+// take the value at the nearest edge. The source's dataWeight is folded into every coverage (the result has
 // none), so a host's weather laid over it is not faded out with the model's domain. Level fields are left
 // out (the renderer does not draw them).
 #pragma once

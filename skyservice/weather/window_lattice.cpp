@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "skyservice/earth/window_lattice.h"
+#include "skyservice/weather/window_lattice.h"
 
 #include <GeographicLib/AzimuthalEquidistant.hpp>
 #include <GeographicLib/Geodesic.hpp>

@@ -5,7 +5,7 @@
 // frame of a moving eye. So the window is not centred on the eye exactly but on the node of a fixed
 // lattice nearest to it (about 2.2 km between nodes): it is resampled only when the eye crosses into
 // another lattice cell (every ~9 s at 250 m/s), and the renderer prepares the next cell's window
-// ahead of time on a worker thread (render/window_provider.h). The centre depends only on the eye
+// ahead of time on a worker thread (weather/window_provider.h). The centre depends only on the eye
 // position, never on timing, so every machine of a multi-channel simulator and every one-shot render
 // use the same window for the same eye: the same clouds.
 //

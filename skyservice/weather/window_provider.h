@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The weather windows a moving eye needs, prepared off the frame path so that no frame waits for one.
 //
-// A window is centred on a lattice node (earth/window_lattice.h), so a moving eye needs a new one only
+// A window is centred on a lattice node (weather/window_lattice.h), so a moving eye needs a new one only
 // when it crosses into another lattice cell. The renderer asks for the window of the eye's node every
 // frame (takeWindow) and names the node the eye is heading for (prefetchWindow): that one is resampled,
 // its anvils derived and summarised on the weather worker (weather_worker.h) while frames go on. When the eye arrives, the
@@ -10,10 +10,10 @@
 #pragma once
 
 #include "skyservice/earth/geodesy.h"
-#include "skyservice/earth/weather_window.h"
-#include "skyservice/earth/window_lattice.h"
-#include "skyservice/render/weather_worker.h"
-#include "skyservice/render/window_analysis.h"
+#include "skyservice/weather/weather_window.h"
+#include "skyservice/weather/window_lattice.h"
+#include "skyservice/weather/weather_worker.h"
+#include "skyservice/weather/window_analysis.h"
 #include "weather_ingest/weather_snapshot.h"
 
 #include <future>
@@ -97,6 +97,11 @@ struct WindowPrefetch
 std::shared_ptr<const PreparedWindow> takeWindow(WindowPrefetch& prefetch,
                                                  const std::shared_ptr<const WeatherSnapshot>& weather,
                                                  const WindowKey& key);
+
+/// The background window when its job has finished (never waits; null otherwise), without counting it
+/// as used: the renderer copies it to the GPU ahead of the eye (window_upload.h) and counts it when a
+/// frame draws it.
+std::shared_ptr<const PreparedWindow> takeFinishedWindow(WindowPrefetch& prefetch);
 
 /// Starts preparing `key` on `worker` unless it is already being prepared or a job still runs
 /// (one at a time: a started job is never abandoned mid-way). The job keeps its own reference to the

@@ -3,7 +3,7 @@
 // the march skips what is empty), the mean wind per layer (animation and shear), and the anvils.
 #pragma once
 
-#include "skyservice/earth/weather_window.h"
+#include "skyservice/weather/weather_window.h"
 
 #include <array>
 #include <glm/glm.hpp>

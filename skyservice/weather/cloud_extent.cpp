@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "skyservice/render/cloud_extent.h"
+#include "skyservice/weather/cloud_extent.h"
 
 #include "shaders/shared/prelude.h"
 #include "shaders/shared/weather_window.h"

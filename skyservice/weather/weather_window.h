@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: MIT
 // The camera-centred weather window: a WeatherSnapshot resampled onto the eye's azimuthal equidistant
-// grid, in the texel layout of shaders/shared/weather_window.h (uploaded as one RGBA16F 2D array texture: render/window_provider.h).
+// grid, in the texel layout of shaders/shared/weather_window.h (uploaded as one RGBA16F 2D array texture: weather/window_provider.h).
 //
-// Sampling rules (OVERVIEW.md):
+// Sampling rules (OVERVIEW.md); wrap, edges and missing values are LatLonGrid's (weather_ingest/lat_lon_grid.h):
 //  - continuous fields bilinear on the lat/lon grid; cloud type from the nearest cell;
 //  - a grid whose nLon * dLonDeg is 360 wraps in longitude (any longitude convention) and is clamped
-//    at the poles; outside a regional grid the coverage is 0 and the other fields take the value at
-//    the nearest edge of the grid (so that the GPU's bilinear filter does not pull base and top
-//    altitudes towards zero at the edge);
-//  - a corner whose coverage, base or top is NaN counts as coverage 0; other NaN values are left out
-//    of the interpolation (the remaining corners are re-weighted) and, when all four are NaN, take a
-//    default (0, or 11000 m for the tropopause);
+//    at the poles; outside a regional grid (beyond half a cell from its outer nodes) the coverage is 0
+//    and the other fields take the value at the nearest edge of the grid (so that the GPU's bilinear
+//    filter does not pull base and top altitudes towards zero at the edge);
+//  - a corner whose coverage, base or top is missing counts as coverage 0; other missing values are left
+//    out of the interpolation (the remaining corners are re-weighted) and, when all four are missing,
+//    take a default (0, or 11000 m for the tropopause);
 //  - a layer that is absent, or whose coverage, base or top vector does not have one value per cell,
 //    gives coverage 0; other missing vectors give their defaults;
 //  - every coverage is multiplied by the snapshot's dataWeight (bilinear; absent = 1), so outside a

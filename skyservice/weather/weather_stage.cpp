@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "skyservice/render/weather_stage.h"
+#include "skyservice/weather/weather_stage.h"
 
 #include "weather_ingest/snapshot_file.h"
 

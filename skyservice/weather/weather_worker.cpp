@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "skyservice/render/weather_worker.h"
+#include "skyservice/weather/weather_worker.h"
 
 namespace sky
 {

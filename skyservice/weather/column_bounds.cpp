@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "skyservice/render/column_bounds.h"
+#include "skyservice/weather/column_bounds.h"
 
 #include "shaders/shared/column_bounds.h"
-#include "skyservice/render/cloud_extent.h"
+#include "skyservice/weather/cloud_extent.h"
 
 #include <algorithm>
 #include <cmath>

@@ -27,8 +27,8 @@
 //    with the reason in lastError; the frames keep the last good weather.
 #pragma once
 
-#include "skyservice/render/weather_worker.h"
-#include "skyservice/render/window_provider.h"
+#include "skyservice/weather/weather_worker.h"
+#include "skyservice/weather/window_provider.h"
 
 #include <functional>
 #include <optional>

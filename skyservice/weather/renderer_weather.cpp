@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "skyservice/render/renderer_weather.h"
+#include "skyservice/weather/renderer_weather.h"
 
 #include "shaders/shared/weather_window.h"
-#include "skyservice/render/column_bounds.h"
+#include "skyservice/weather/column_bounds.h"
 
 namespace sky
 {
@@ -16,16 +16,18 @@ SkyStatus createWeatherImages(const Context& ctx, MemoryTracker& memory, Rendere
     d.layers = WEATHER_GPU_SLICES;
     d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
     SKY_TRY(createImage(ctx, memory, w.windowImage, d, "weather window"));
-    d = ImageDesc{};
-    d.format = VK_FORMAT_R8G8_UINT;  // shaders/shared/column_bounds.h
-    d.width = columnBoundsWidth(WEATHER_WINDOW_SIZE);
-    d.height = WEATHER_WINDOW_SIZE;
-    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
-    return createImage(ctx, memory, w.columnBoundsImage, d, "weather column bounds");
+    ImageDesc bounds;
+    bounds.format = VK_FORMAT_R8G8_UINT;  // shaders/shared/column_bounds.h
+    bounds.width = columnBoundsWidth(WEATHER_WINDOW_SIZE);
+    bounds.height = WEATHER_WINDOW_SIZE;
+    bounds.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+    SKY_TRY(createImage(ctx, memory, w.columnBoundsImage, bounds, "weather column bounds"));
+    return createWindowCopy(ctx, memory, w.back, d, bounds);
 }
 
 void destroyWeatherImages(const Context& ctx, MemoryTracker& memory, RendererWeather& w)
 {
+    destroyWindowCopy(ctx, memory, w.back);
     destroyImage(ctx, memory, w.windowImage);
     destroyImage(ctx, memory, w.columnBoundsImage);
 }

@@ -6,9 +6,10 @@
 // (window_upload.h) advances it once per frame, on the frame's thread: the worker only computes.
 #pragma once
 
-#include "skyservice/render/weather_stage.h"
-#include "skyservice/render/weather_worker.h"
-#include "skyservice/render/window_provider.h"
+#include "skyservice/weather/weather_stage.h"
+#include "skyservice/weather/weather_worker.h"
+#include "skyservice/weather/window_copy.h"
+#include "skyservice/weather/window_provider.h"
 #include "skyservice/vk/resources.h"
 
 #include <chrono>
@@ -28,21 +29,27 @@ struct RendererWeather
     uint64_t version = 0;
     uint64_t versionsIssued = 0;  ///< the last version given out (staged weathers get theirs early)
     WeatherStage stage;           ///< a new weather being prepared on `worker` (weather_stage.h)
-    /// The window on the GPU (centred on the lattice node of the eye, earth/window_lattice.h): frames
-    /// whose eye stays in that node's cell, with the same weather and window settings, reuse it.
+    /// The window frames draw, in windowImage and columnBoundsImage (centred on a lattice node near the
+    /// eye, weather/window_lattice.h): frames whose eye stays in that node's cell, with the same weather
+    /// and window settings, reuse it.
     std::shared_ptr<const PreparedWindow> window;
-    bool windowOnGpu = false;  ///< windowImage and columnBoundsImage hold `window` (false after a failed upload)
+    /// The window of the eye's node when it is not `window` yet: being copied into `back`, then swapped in.
+    std::shared_ptr<const PreparedWindow> wanted;
+    WindowCopy back;           ///< the second pair of window images and the copy into them (window_copy.h)
+    bool backFromPrefetch = false;  ///< back.window is a prefetched one copied ahead of the eye, not drawn yet
     WindowPrefetch prefetch;   ///< the next cell's window, made on `worker`
     glm::dvec3 lastEyeEcefM{0.0};  ///< eye of the previous frame: its motion says which cell is next
     std::chrono::steady_clock::time_point lastFrameClock{};  ///< when the previous frame began (real time)
     double eyeSpeedMps = 0;    ///< estimate of the eye's horizontal speed: it sets the look-ahead
     Image windowImage;         ///< `window`'s slices the shaders read (shaders/shared/weather_window.h)
     Image columnBoundsImage;   ///< its column-bounds pyramid (shaders/shared/column_bounds.h)
+    uint64_t windowCopiesWaited = 0;  ///< frames that waited for a window copy (no other window to draw)
 };
 
-/// Makes the window's GPU images (filled by the first frame's updateWeatherWindow).
+/// Makes the window's GPU images, both pairs (filled by the first frame's updateWeatherWindow).
 SkyStatus createWeatherImages(const Context& ctx, MemoryTracker& memory, RendererWeather& weather);
-/// Destroys the images; the worker's jobs finish on their own (the worker joins when RendererWeather goes).
+/// Destroys the images (after a copy in flight); the worker's jobs finish on their own (the worker joins
+/// when RendererWeather goes).
 void destroyWeatherImages(const Context& ctx, MemoryTracker& memory, RendererWeather& weather);
 
 }  // namespace sky
