@@ -15,6 +15,7 @@
 // Only the layouts were read there; the code is this project's own.
 #pragma once
 
+#include "shaders/shared/cloud_type.h"
 #include "skyservice/cigi/cigi_wire.h"
 
 #include <cstdint>
@@ -77,21 +78,8 @@ enum WeatherLayerId : uint8_t
     kLayerDust = 9,
 };
 
-/// Weather Control "Cloud Type" (4 bits); 11-15 are "Other" (IG-defined).
-enum class CloudType : uint8_t
-{
-    None = 0,
-    Altocumulus = 1,
-    Altostratus = 2,
-    Cirrocumulus = 3,
-    Cirrostratus = 4,
-    Cirrus = 5,
-    Cumulonimbus = 6,
-    Cumulus = 7,
-    Nimbostratus = 8,
-    Stratocumulus = 9,
-    Stratus = 10,
-};
+/// Weather Control "Cloud Type" (4 bits): the project's one list of genera (11-15 are "Other", IG-defined).
+using sky::CloudType;
 
 /// Weather Control "Scope" (2 bits; 3 is not defined).
 enum class WeatherScope : uint8_t
@@ -223,7 +211,7 @@ struct WeatherControl
     bool scudEnable = false;
     bool randomWindsEnable = false;
     bool randomLightningEnable = false;
-    uint8_t cloudType = 0;             ///< CloudType
+    uint8_t cloudType = 0;             ///< CloudType (shaders/shared/cloud_type.h)
     uint8_t scope = 0;                 ///< WeatherScope
     uint8_t severity = 0;              ///< 0 (least) - 5 (most)
     float airTemperatureC = 0;
