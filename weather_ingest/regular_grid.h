@@ -37,7 +37,4 @@ bool wrapsInLongitude(const LatLonGrid& grid);
 /// @return the interpolated value; NaN outside the grid or when a needed corner is NaN.
 float sampleBilinear(const GridField& field, double latDeg, double lonDeg);
 
-/// Seconds since 1970-01-01T00:00:00Z of a proleptic Gregorian UTC date and time.
-int64_t unixTimeFromCivil(int year, int month, int day, int hour, int minute, int second);
-
 }  // namespace sky

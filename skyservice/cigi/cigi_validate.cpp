@@ -2,6 +2,7 @@
 #include "skyservice/cigi/cigi_validate.h"
 
 #include "skyservice/cigi/cigi_fields.h"
+#include "weather_ingest/civil_time.h"
 
 #include <cmath>
 #include <cstdio>
@@ -72,17 +73,6 @@ private:
     std::string error_;
 };
 
-bool leapYear(unsigned year)
-{
-    return (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
-}
-
-unsigned daysInMonth(unsigned month, unsigned year)
-{
-    static const unsigned kDays[] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
-    return month == 2 && leapYear(year) ? 29 : kDays[month - 1];
-}
-
 } // namespace
 
 std::string validate(const IgControl& p)
@@ -129,7 +119,7 @@ std::string validate(const CelestialSphereControl& p)
         c.require<&CelestialSphereControl::minute>(p, p.minute <= 59, "is not 0-59");
         c.require<&CelestialSphereControl::dateMMDDYYYY>(p, month >= 1 && month <= 12, "has no month 1-12");
         c.require<&CelestialSphereControl::dateMMDDYYYY>(
-            p, month < 1 || month > 12 || (day >= 1 && day <= daysInMonth(month, year)),
+            p, month < 1 || month > 12 || (day >= 1 && day <= daysInMonth(int(year), month)),
             "has a day the month does not have");
     }
     return c.result();
