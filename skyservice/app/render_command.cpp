@@ -6,7 +6,7 @@
 #include "skyservice/app/weather_source.h"
 #include "skyservice/render/reference_renderer.h"
 #include "skyservice/render/renderer.h"
-#include "skyservice/render/view_frustum.h"
+#include "skyservice/render/view_validation.h"
 #include "skyservice/sky/ephemeris.h"
 
 #include <CLI/CLI.hpp>
@@ -93,7 +93,7 @@ int runRenderCommand(const RenderCommandOptions& options)
         std::fprintf(stderr, "skyservice render: --time %s: %s\n", options.time.c_str(), error.c_str());
         return kExitUsage;
     }
-    if (!validateEyePose(request.pose, error) || !validateFrustum(request.frustum, error))
+    if (!validateView(request, error))  // refused before the device starts, as a usage error
     {
         std::fprintf(stderr, "skyservice render: %s\n", error.c_str());
         return kExitUsage;

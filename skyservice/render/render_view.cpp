@@ -11,6 +11,7 @@
 #include "skyservice/render/light_volume.h"
 #include "skyservice/render/shadow_map.h"
 #include "skyservice/render/view_frustum.h"
+#include "skyservice/render/view_validation.h"
 #include "skyservice/render/window_upload.h"
 
 #include <algorithm>
@@ -23,26 +24,6 @@ namespace sky
 {
 namespace
 {
-
-SkyStatus checkRequest(const ViewRequest& req)
-{
-    std::string error;
-    if (!validateEyePose(req.pose, error))
-        return SkyStatus::failure(error, VK_ERROR_INITIALIZATION_FAILED);
-    if (req.width < 8 || req.height < 8 || req.width > 8192 || req.height > 8192)
-        return SkyStatus::failure("image size " + std::to_string(req.width) + "x" + std::to_string(req.height) +
-                                      " outside 8..8192",
-                                  VK_ERROR_INITIALIZATION_FAILED);
-    if (req.frustum.asymmetric)
-    {
-        if (!validateFrustum(req.frustum, error))
-            return SkyStatus::failure(error, VK_ERROR_INITIALIZATION_FAILED);
-    }
-    else if (!(req.fovYDeg > 1.0 && req.fovYDeg < 170.0))
-        return SkyStatus::failure("vertical field of view " + std::to_string(req.fovYDeg) + " outside (1, 170) degrees",
-                                  VK_ERROR_INITIALIZATION_FAILED);
-    return SkyStatus::success();
-}
 
 double halton(uint32_t index, uint32_t base)
 {
@@ -86,7 +67,6 @@ struct PreparedView
 
 SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySettings& quality, PreparedView& v)
 {
-    SKY_TRY(checkRequest(request));
     std::string error;
     if (!validateNoisePeriods(quality, error) || !validateShadowMapRequest(request, quality, error))
         return SkyStatus::failure(error, VK_ERROR_INITIALIZATION_FAILED);
@@ -324,6 +304,9 @@ MappedFrame mappedFrame(const Renderer& r, const FrameTicket& ticket)
 
 SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySettings& quality, RenderResult& result)
 {
+    // The entry point of callers that draw directly; submitView's caller validated its views (view_validation.h).
+    if (std::string error; !validateView(request, error))
+        return SkyStatus::failure(error, VK_ERROR_INITIALIZATION_FAILED);
     const uint32_t frames = quality.reprojected ? 1u : std::max(1u, quality.accumulationFrames);
     FrameTicket ticket;
     if (frames == 1)
