@@ -159,16 +159,17 @@ SkyStatus submitPrepared(Renderer& r, PreparedView& v, const ViewRequest& reques
     r.currentFrame = (r.currentFrame + 1) % kFramesInFlight;
     FrameContext& frame = recording(r);
     const bool shadow = request.shadowMap && k + 1 == frames;  // once, after the last accumulated frame
-    ViewRequest recorded = request;
-    recorded.shadowMap = shadow;
-    SkyStatus status = beginFrameCommands(r.ctx, r.memory, frame, frameReadbackBytes(r, recorded, quality));
+    // The ticket keeps the frame's one copy of the request (the caller's may be gone before finishView),
+    // as this frame records it: with the shadow map only on the last accumulated frame.
+    ticket = FrameTicket{};
+    ticket.request = request;
+    ticket.request.shadowMap = shadow;
+    SkyStatus status = beginFrameCommands(r.ctx, r.memory, frame, frameReadbackBytes(r, ticket.request, quality));
     if (!status.ok())
         return status;
     std::memcpy(frame.frameUniforms.mapped, &v.params, sizeof v.params);
 
-    ticket = FrameTicket{};
     ticket.context = r.currentFrame;
-    ticket.request = request;
     ticket.reprojected = quality.reprojected;
     ticket.lightVolume = v.params.lightVolume.z > 0.0f;
     if (shadow)
