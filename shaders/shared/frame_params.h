@@ -79,7 +79,7 @@ struct FrameParams
     // samples takes those (0: never; RenderTuning::coneTailReuseM, cloud_lighting.glsl ConeTail).
     vec4 lightVolume;
     // x: view samples behind a transmittance below this take the base shape without detail erosion (0:
-    // never; QualitySettings::detailMinTransmittance); y: those samples step this many times further; z: a
+    // never; RenderTuning::detailMinTransmittance); y: those samples step this many times further; z: a
     // step inside a cloud covers at most this optical depth (0: no limit; maxStepOpticalDepth); w: deep lit
     // samples within this distance (m) of the last cone marched take its light (0: never; deepLightReuseM).
     vec4 detailLod;

@@ -66,16 +66,17 @@ bool qualityFromOptions(const CommonRenderOptions& o, QualitySettings& q, std::s
         q.maxViewSteps = uint32_t(o.steps);
     if (o.accumulate > 0)
         q.accumulationFrames = uint32_t(o.accumulate);
-    q.noiseSeed = o.seed;
+    if (o.seed)
+        q.noiseSeed = *o.seed;
     return true;
 }
 
-bool startRenderer(const CommonRenderOptions& o, Renderer& renderer, const char* command)
+bool startRenderer(const CommonRenderOptions& o, uint32_t noiseSeed, Renderer& renderer, const char* command)
 {
     RendererOptions ro;
     ro.context.deviceSelector = o.device;
     ro.context.validation = o.validate;
-    ro.noiseSeed = o.seed;
+    ro.noiseSeed = noiseSeed;
     SkyStatus status = createRenderer(renderer, ro);
     if (status.ok())
         return true;
@@ -117,7 +118,7 @@ int runRenderCommand(const RenderCommandOptions& options)
     }
 
     Renderer renderer;
-    if (!startRenderer(options.common, renderer, "render"))
+    if (!startRenderer(options.common, quality.noiseSeed, renderer, "render"))
         return kExitRuntime;
     setWeather(renderer, weather);
     RenderResult result;

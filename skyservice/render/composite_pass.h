@@ -18,7 +18,7 @@ struct CompositePass
 {
     Program program;
     Image displayImage;  ///< tone-mapped sRGB, every frame (frame_images.h makes the frame-size images)
-    Image linearImage;   ///< only while frames ask for it (QualitySettings::linearOutput)
+    Image linearImage;   ///< only while frames ask for it (ViewRequest::linearOutput)
     /// Compositing layers, only while frames ask for them (kReadSky, kReadCloudLayer).
     Image skyImage, cloudLayerImage;
     /// The depth layer (kReadDepthLayer, kDrawDepthLayer): RG32F, R the cloud's front, G its weighted distance.

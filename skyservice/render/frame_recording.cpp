@@ -21,16 +21,16 @@ void copyRegion(const FrameContext& frame, const ReadbackRegion& region, std::ve
 
 }  // namespace
 
-FrameOutputs FrameOutputs::of(const ViewRequest& request, const QualitySettings& quality)
+FrameOutputs FrameOutputs::of(const ViewRequest& request)
 {
     FrameOutputs o;
-    o.linearImage = quality.linearOutput;
+    o.linearImage = request.linearOutput;
     const uint32_t bits = request.readback;
     // Layers kept on the GPU for the export are drawn even when nothing is read back (sky-bench).
     o.sky = (bits & kDrawSky) != 0;
     o.cloudLayer = (bits & kDrawCloudLayer) != 0;
     o.depthLayer = (bits & kDrawDepthLayer) != 0;
-    if (!quality.readback)
+    if (!request.copyToHost)
         return o;
     o.display = (bits & kReadDisplay) != 0;
     o.cloud = (bits & kReadCloud) != 0;
@@ -42,19 +42,19 @@ FrameOutputs FrameOutputs::of(const ViewRequest& request, const QualitySettings&
     o.cloudLayer = o.cloudLayer || o.readCloudLayer;
     o.depthLayer = o.depthLayer || o.readDepthLayer;
     o.shadowDetail = (bits & kReadShadowDetail) != 0;
-    o.linear = quality.linearOutput;
+    o.linear = request.linearOutput;
     return o;
 }
 
-VkDeviceSize frameReadbackBytes(const Renderer& r, const ViewRequest& request, const QualitySettings& quality)
+VkDeviceSize frameReadbackBytes(const Renderer& r, const ViewRequest& request)
 {
-    const FrameOutputs o = FrameOutputs::of(request, quality);
+    const FrameOutputs o = FrameOutputs::of(request);
     VkDeviceSize bytes = 0;
     const std::pair<bool, const Image*> images[] = {
         {o.display, &r.composite.displayImage}, {o.cloud, &r.march.cloudImage},      {o.depth, &r.march.depthImage},
         {o.linear, &r.composite.linearImage},   {o.readSky, &r.composite.skyImage},
         {o.readCloudLayer, &r.composite.cloudLayerImage}, {o.readDepthLayer, &r.composite.depthLayerImage},
-        {request.shadowMap && quality.readback, &r.shadowPass.transmittance},
+        {request.shadowMap && request.copyToHost, &r.shadowPass.transmittance},
         {request.shadowMap && o.shadowDetail, &r.shadowPass.image},
     };
     for (const auto& [wanted, image] : images)
@@ -68,7 +68,7 @@ void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, c
                  RenderResult& facts)
 {
     const bool reprojected = in.quality->reprojected;
-    const FrameOutputs outputs = FrameOutputs::of(request, *in.quality);
+    const FrameOutputs outputs = FrameOutputs::of(request);
     VkCommandBuffer cmd = frame.cmd;
     vkCmdResetQueryPool(cmd, frame.timestamps, 0, kTsCount);
     // Reprojected: one invocation per block (4x4, or finer near clouds) into the fresh images.

@@ -25,8 +25,8 @@ enum TimestampSlot : uint32_t
 };
 static_assert(kTsCount <= kFrameTimestampSlots, "frame_context.h: kFrameTimestampSlots");
 
-/// What the composite writes and the readback copies for `request` (its readback bits, the quality's
-/// linearOutput and readback switches).
+/// What the composite writes and the readback copies for `request` (its readback bits, its linearOutput
+/// and copyToHost switches).
 struct FrameOutputs
 {
     bool display = false, cloud = false, depth = false, linear = false;
@@ -37,11 +37,11 @@ struct FrameOutputs
     bool shadowDetail = false;
     bool linearImage = false;  ///< the composite writes the linear frame (even when not read back)
 
-    static FrameOutputs of(const ViewRequest& request, const QualitySettings& quality);
+    static FrameOutputs of(const ViewRequest& request);
 };
 
 /// Bytes of the readback buffer the frame needs (its images must exist: after ensureOutputImages etc.).
-VkDeviceSize frameReadbackBytes(const Renderer& r, const ViewRequest& request, const QualitySettings& quality);
+VkDeviceSize frameReadbackBytes(const Renderer& r, const ViewRequest& request);
 
 /// Records one frame into `frame.cmd` (`params`: what its frame uniforms hold): sky-view LUT, light volume,
 /// cloud march, reconstruct, composite; queues the readback of the asked-for images (recordReadbacks then

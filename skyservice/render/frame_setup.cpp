@@ -139,7 +139,7 @@ FrameParams makeFrameParams(const FrameInputs& in)
         flags |= FRAME_FLAG_NO_DETAIL;
     if (!q.highCloud)
         flags |= FRAME_FLAG_NO_HIGH_CLOUD;
-    if (!q.linearOutput)
+    if (!req.linearOutput)
         flags |= FRAME_FLAG_NO_LINEAR_OUTPUT;
     if (q.reprojected)
         flags |= FRAME_FLAG_REPROJECTED;
@@ -151,8 +151,8 @@ FrameParams makeFrameParams(const FrameInputs& in)
     f.march = uvec4(q.maxViewSteps, q.lightSamples, uint32_t(std::clamp(t.coneNearMergeBeyondM, 0.0, 1e9)), 0u);
     f.marchLod = vec4(float(t.detailFadeStartM), float(std::max(t.detailFadeEndM, t.detailFadeStartM + 1.0)),
                       float(std::max(t.lightLodDistanceM, 0.0)), float(q.fullConeSamples));
-    f.detailLod = vec4(float(q.detailMinTransmittance), float(std::max(q.deepStepFactor, 1.0)),
-                       float(std::max(q.maxStepOpticalDepth, 0.0)), float(std::max(t.deepLightReuseM, 0.0)));
+    f.detailLod = vec4(float(t.detailMinTransmittance), float(std::max(t.deepStepFactor, 1.0)),
+                       float(std::max(t.maxStepOpticalDepth, 0.0)), float(std::max(t.deepLightReuseM, 0.0)));
     // One jitter texel: a pixel's height at the view axis (2 tan(fovY/2) / height when centred), so that
     // channels of one wall with the same vertical extent and height share the texels.
     f.worldJitter = vec4(float(2.0 * tangents.halfHeight / double(req.height)), 0.0f, 0.0f, 0.0f);

@@ -269,7 +269,7 @@ SkyStatus renderReference(Renderer& r, ReferenceRenderer& ref, const ViewRequest
     ref.last.stretchesSkipped = wide(counters->skippedLow, counters->skippedHigh);
 
     // The real-time composite over the path-traced clouds, into the images the frame asked for.
-    const FrameOutputs outputs = FrameOutputs::of(request, q);
+    const FrameOutputs outputs = FrameOutputs::of(request);
     CompositeImages images;
     images.cloud = &r.march.cloudImage;
     images.depth = &r.march.depthImage;

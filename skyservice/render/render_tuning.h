@@ -5,6 +5,8 @@
 // preset sets; these stay at the defaults below unless a benchmark or a test changes Renderer::tuning.
 #pragma once
 
+#include <cstdint>
+
 namespace sky
 {
 
@@ -28,7 +30,7 @@ struct RenderTuning
     /// on average, 34.4 dB of every cone marched on its radiance scale; the cascade's 160 m texels holding
     /// those tails instead, 43.9 dB (tests/gpu/test_light_volume.cpp, far cascade).
     double coneTailReuseBeyondM = 15000.0;
-    /// Deep lit samples (behind a view transmittance below QualitySettings::detailMinTransmittance) within
+    /// Deep lit samples (behind a view transmittance below detailMinTransmittance) within
     /// this distance (m) of the last cone marched take its light and march none (0: each marches its own).
     /// What they add reaches the eye through less than a tenth. H200, 1080p: inside-cloud -10 %
     /// reprojected, -13 % full, the deck -6 % full; the 320x180 contact sheet 59.9 dB of 0 (BENCHMARKS.md).
@@ -42,6 +44,32 @@ struct RenderTuning
     /// bench scenes against 0: 46.2 dB at 25 km, 51.4 dB at 40 km; FL350's deck 39.3 / 43.9 dB).
     /// BENCHMARKS.md; tests/gpu/test_cone_tail.cpp.
     double coneNearMergeBeyondM = 40000.0;
+    /// View samples behind a view transmittance below this take the base shape without detail erosion
+    /// (0: never): there little of the sample reaches the eye. 0.2 since issue 22's shapes made each
+    /// eroded sample dearer: H200, 1080p reprojected, against 0.1: inside the deck -8 % per frame, the
+    /// deck -3 %, cumulus -1 %, FL350 -2 % (BENCHMARKS.md, eighteenth session); the 320x180 contact sheet
+    /// of the bench scenes 45-55 dB (display) of 0.1's, and the deck from above 41 dB (cloud radiance) of
+    /// the render that erodes every sample (47 dB at 0.1; tests/gpu/test_render.cpp).
+    double detailMinTransmittance = 0.2;
+    /// Those deep view samples also step this many times further (1: the same step). H200, 1080p
+    /// reprojected: -11..-17 % per frame at 2; the 320x180 contact sheet of the bench scenes 67 dB of 1.
+    double deepStepFactor = 2.0;
+    /// A step inside a cloud covers at most this optical depth at the sample's extinction (the sample at
+    /// a surface: at full density; while the view transmittance is above 0.5: at least half of it), so
+    /// that the sunlit skin, a mean free path deep, gets its samples where the distance-grown step is
+    /// longer (0: no limit). Against 5x finer steps (tests/gpu/test_render.cpp
+    /// CloudStepsConvergeOnFinerSteps): 36.0 / 42.2 dB. With no limit the sunlit side of a cumulus is 15 %
+    /// too dark (test SunSideOfACumulusIsBrighterThanItsShadowSide fails) and frames were 1.5-3x cheaper
+    /// (H200, 1080p reprojected, measured against the limit with a floor everywhere: BENCHMARKS.md).
+    double maxStepOpticalDepth = 1.0;
+    /// Reprojected frames march one pixel of every NxN block with the eye inside an overcast cloud layer
+    /// (between its base and top, coverage >= 0.8 around it: fog; reprojection.h kOvercastCoverage): 2 (a
+    /// quarter of the pixels, 4x those of the usual 4x4 block), or 1 (every pixel: the frame equals a full
+    /// render). In a broken or scattered layer it is always 1. In fog a pixel's radiance comes from the
+    /// first ~100 m of cloud, which moves little per frame: turning at 60 deg/s at 250 m/s inside an
+    /// overcast deck (tests/gpu/test_flight_path.cpp) block 2 keeps the display image 50+ dB of the
+    /// full render. H200, 1080p: inside-cloud 0.748 -> 0.277 ms (BENCHMARKS.md).
+    uint32_t insideCloudBlockPx = 2;
     double detailFadeStartM = 8000.0;  ///< detail erosion fades out from here...
     double detailFadeEndM = 25000.0;   ///< ...to here (beyond, its noise is finer than a pixel)
     /// With the light volume, also its far cascade of 2x wider texels (15.4 km around the eye): lit

@@ -76,12 +76,12 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
     const WeatherWindow& window = r.weather.window->window;
     const EyeOnWindow eyeOnWindow =
         placeEyeOnWindow(window.centreLatDeg, window.centreLonDeg, v.camera.eye.latDeg, v.camera.eye.lonDeg);
-    const FrameOutputs outputs = FrameOutputs::of(request, quality);
+    const FrameOutputs outputs = FrameOutputs::of(request);
     SKY_TRY(ensureOutputImages(r, request.width, request.height, outputs, quality.reprojected));
     if (quality.reprojected)
     {
         r.reconstruct.reprojection.block =
-            chooseMarchBlock(window, v.camera.eye.altitudeM, eyeOnWindow.offsetM, quality.insideCloudBlockPx);
+            chooseMarchBlock(window, v.camera.eye.altitudeM, eyeOnWindow.offsetM, r.tuning.insideCloudBlockPx);
         SKY_TRY(ensureReprojectionImages(r, request.width, request.height, r.reconstruct.reprojection.block.blockPx,
                                          outputs.depthLayer));
     }
@@ -164,7 +164,7 @@ SkyStatus submitPrepared(Renderer& r, PreparedView& v, const ViewRequest& reques
     ticket = FrameTicket{};
     ticket.request = request;
     ticket.request.shadowMap = shadow;
-    SkyStatus status = beginFrameCommands(r.ctx, r.memory, frame, frameReadbackBytes(r, ticket.request, quality));
+    SkyStatus status = beginFrameCommands(r.ctx, r.memory, frame, frameReadbackBytes(r, ticket.request));
     if (!status.ok())
         return status;
     std::memcpy(frame.frameUniforms.mapped, &v.params, sizeof v.params);
@@ -173,7 +173,7 @@ SkyStatus submitPrepared(Renderer& r, PreparedView& v, const ViewRequest& reques
     ticket.reprojected = quality.reprojected;
     ticket.lightVolume = v.params.lightVolume.z > 0.0f;
     if (shadow)
-        ticket.shadow.transmittance = reserveShadowMapReadback(r, frame, quality);  // first: a fixed offset
+        ticket.shadow.transmittance = reserveShadowMapReadback(r, frame, request);  // first: a fixed offset
     recordFrame(r, frame, request, v.camera, v.sunMoon, v.in, v.params, ticket.plan, ticket.facts);
     if (shadow)
         recordShadowMap(r, frame, request, quality, v.camera, v.sunMoon, ticket.shadow, ticket.facts);

@@ -52,8 +52,6 @@ ShadowMapDrawing drawingFor(const Renderer& r, const ViewRequest& request, const
     d.sizeTexels = request.shadowMapSize;
     d.extentM = request.shadowMapExtentM;
     d.quality = quality;
-    d.quality.readback = false;
-    d.quality.linearOutput = false;
     d.tuning = r.tuning;
     d.weatherVersion = r.weather.version;
     d.window = r.weather.window.get();
@@ -277,7 +275,7 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
         drawShadowMap(r, frame, request, quality, camera, sunMoon, next);
         drawn = std::move(next);
     }
-    if (quality.readback)
+    if (request.copyToHost)
     {
         // A reused map is copied once into each frame context's buffer, not every frame (4 MiB at 1024²).
         readback.transmittance = reserved;
@@ -299,9 +297,9 @@ void recordShadowMap(Renderer& r, FrameContext& frame, const ViewRequest& reques
     facts.shadowMapRedrawn = readback.redrawn;
 }
 
-ReadbackRegion reserveShadowMapReadback(const Renderer& r, FrameContext& frame, const QualitySettings& quality)
+ReadbackRegion reserveShadowMapReadback(const Renderer& r, FrameContext& frame, const ViewRequest& request)
 {
-    return quality.readback ? reserveImageReadback(frame, r.shadowPass.transmittance) : ReadbackRegion{};
+    return request.copyToHost ? reserveImageReadback(frame, r.shadowPass.transmittance) : ReadbackRegion{};
 }
 
 void collectShadowMap(const Renderer& r, const FrameContext& frame, const ShadowMapReadback& readback,

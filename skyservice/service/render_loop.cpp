@@ -246,8 +246,7 @@ void RenderLoop::Impl::startFrame(uint64_t id, ViewRequest& request, const SimCl
                                          [id](const FilesSubscription& f) { return id % f.every == 0; });
     const bool exr = !pendingWriteFiles.empty() ||
                      std::any_of(files.begin(), files.end(), [](const FilesSubscription& f) { return f.format != "png"; });
-    QualitySettings frameQuality = quality;
-    frameQuality.linearOutput = writesFiles && exr;
+    request.linearOutput = writesFiles && exr;
     request.readback = (layers & (1u << SKY_LAYER_DISPLAY)) ? kReadDisplay : 0u;
     if (layers & (1u << SKY_LAYER_SKY))
         request.readback |= kReadSky;
@@ -270,7 +269,7 @@ void RenderLoop::Impl::startFrame(uint64_t id, ViewRequest& request, const SimCl
     frame.exportLayers = exportLayers;
     frame.copyPixels = writesFiles;
     frame.files = std::move(files);
-    SkyStatus status = submitView(r, request, frameQuality, frame.ticket);
+    SkyStatus status = submitView(r, request, quality, frame.ticket);
     weatherSchedule.afterFrame(r);
     frame.drawn = weatherSchedule.drawn();
     if (!status.ok())
