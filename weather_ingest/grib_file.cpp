@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "weather_ingest/grib_file.h"
 
+#include "weather_ingest/civil_time.h"
 #include "weather_ingest/grib_framing.h"
 #include "weather_ingest/ingest_error.h"
 

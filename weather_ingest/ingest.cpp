@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "weather_ingest/ingest.h"
 
+#include "weather_ingest/civil_time.h"
 #include "weather_ingest/grib_mapping.h"
 #include "weather_ingest/grid_composite.h"
 #include "weather_ingest/ingest_error.h"
@@ -12,7 +13,6 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <ctime>
 #include <deque>
 #include <filesystem>
 #include <map>
@@ -23,16 +23,6 @@ namespace sky
 {
 namespace
 {
-
-std::string isoTime(int64_t unixS)
-{
-    const auto t = static_cast<std::time_t>(unixS);
-    std::tm tm = {};
-    gmtime_r(&t, &tm);
-    char buf[32];
-    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-    return buf;
-}
 
 bool startsWith(const std::vector<uint8_t>& b, const char* magic, size_t n)
 {
@@ -242,7 +232,7 @@ ConvertResult convertFiles(const std::vector<std::string>& paths, const MappingO
     for (const auto& [time, records] : byTime)
     {
         if (progress)
-            progress(0.9 + 0.1 * double(done++) / double(byTime.size()), "mapping " + isoTime(time));
+            progress(0.9 + 0.1 * double(done++) / double(byTime.size()), "mapping " + formatIso8601Utc(time));
         result.snapshots.push_back(mapTime(records, options, result.warnings));
         outputBytes += payloadBytes(result.snapshots.back());
         guard.check(outputBytes, "the snapshot file would take", paths.front());
@@ -253,11 +243,11 @@ ConvertResult convertFiles(const std::vector<std::string>& paths, const MappingO
     {
         std::string error;
         if (!validateSnapshot(result.snapshots[i], error))
-            throw IngestError(IngestErrorKind::BadValues, paths.front(), "snapshot " + isoTime(result.snapshots[i].validTimeUnixS),
+            throw IngestError(IngestErrorKind::BadValues, paths.front(), "snapshot " + formatIso8601Utc(result.snapshots[i].validTimeUnixS),
                               "", error);
         if (i > 0 && result.snapshots[i].validTimeUnixS == result.snapshots[i - 1].validTimeUnixS)
             throw IngestError(IngestErrorKind::BadValues, paths.front(), "", "",
-                              "two inputs give the valid time " + isoTime(result.snapshots[i].validTimeUnixS) +
+                              "two inputs give the valid time " + formatIso8601Utc(result.snapshots[i].validTimeUnixS) +
                                   "; convert them separately");
     }
     if (result.snapshots.empty())
@@ -284,7 +274,7 @@ std::string describeGrib(const std::string& path)
         const GribMessageInfo& info = m.info();
         ++count;
         ++grids[info.gridDescription];
-        ++times[isoTime(info.validTimeUnixS)];
+        ++times[formatIso8601Utc(info.validTimeUnixS)];
         ++editions["GRIB" + std::to_string(info.edition)];
         ++mappings[mappingName(info.centre, info.gridType)];
         if (const auto row = gribRoleOf(info))

@@ -23,7 +23,4 @@ struct GridField
 ///   spacing (longitudes compared modulo 360, so 0..357.5 equals -180..177.5 only if the origins agree).
 bool sameGrid(const LatLonGrid& a, const LatLonGrid& b, double toleranceDeg = 1e-6);
 
-/// Seconds since 1970-01-01T00:00:00Z of a proleptic Gregorian UTC date and time.
-int64_t unixTimeFromCivil(int year, int month, int day, int hour, int minute, int second);
-
 }  // namespace sky

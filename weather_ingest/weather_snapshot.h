@@ -23,6 +23,7 @@
 //    domain edge is soft, not a wall. Empty: 1 everywhere (a global model).
 #pragma once
 
+#include "shaders/shared/cloud_type.h"
 #include "weather_ingest/lat_lon_grid.h"
 
 #include <array>
@@ -36,22 +37,6 @@ namespace sky
 
 /// Volumetric layers per snapshot; equals MAX_CLOUD_LAYERS in shaders/shared/bindings.h.
 inline constexpr int kMaxCloudLayers = 4;
-
-/// WMO cloud genera, numbered as CIGI does (docs/model.md).
-enum class CloudType : uint8_t
-{
-    None = 0,
-    Altocumulus = 1,
-    Altostratus = 2,
-    Cirrocumulus = 3,
-    Cirrostratus = 4,
-    Cirrus = 5,
-    Cumulonimbus = 6,
-    Cumulus = 7,
-    Nimbostratus = 8,
-    Stratocumulus = 9,
-    Stratus = 10,
-};
 
 /// One volumetric cloud layer: every vector has grid.cellCount() values.
 struct CloudLayerFields

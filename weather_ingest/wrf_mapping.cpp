@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "weather_ingest/wrf_mapping.h"
 
+#include "weather_ingest/civil_time.h"
 #include "weather_ingest/curvilinear_resampler.h"
 #include "weather_ingest/ingest_error.h"
 #include "weather_ingest/pressure_altitude.h"

@@ -21,6 +21,7 @@
 #ifndef SKY_SHARED_WEATHER_WINDOW_H
 #define SKY_SHARED_WEATHER_WINDOW_H
 #include "shaders/shared/bindings.h"
+#include "shaders/shared/cloud_type.h"
 
 #define WEATHER_WINDOW_HIGH_SLICE (2 * MAX_CLOUD_LAYERS)
 #define WEATHER_WINDOW_ANVIL_SLICE (2 * MAX_CLOUD_LAYERS + 2)
@@ -41,18 +42,5 @@
 
 // Coverage below which a layer draws nothing (cloudDensity skips it; column_bounds.h counts from it).
 #define CLOUD_COVERAGE_MIN 0.01f
-
-// CIGI / WMO genera (docs/model.md).
-#define CLOUD_TYPE_NONE 0
-#define CLOUD_TYPE_ALTOCUMULUS 1
-#define CLOUD_TYPE_ALTOSTRATUS 2
-#define CLOUD_TYPE_CIRROCUMULUS 3
-#define CLOUD_TYPE_CIRROSTRATUS 4
-#define CLOUD_TYPE_CIRRUS 5
-#define CLOUD_TYPE_CUMULONIMBUS 6
-#define CLOUD_TYPE_CUMULUS 7
-#define CLOUD_TYPE_NIMBOSTRATUS 8
-#define CLOUD_TYPE_STRATOCUMULUS 9
-#define CLOUD_TYPE_STRATUS 10
 
 #endif

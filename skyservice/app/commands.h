@@ -6,6 +6,7 @@
 #include "skyservice/render/render_types.h"
 #include "skyservice/vk/context.h"
 
+#include <optional>
 #include <string>
 
 namespace CLI
@@ -32,7 +33,8 @@ struct CommonRenderOptions
     std::string device;
     bool validate = false;
     std::string quality = "high";   ///< preset: high | medium | test
-    uint32_t seed = 1;
+    /// --seed: replaces the config file's noise.seed when given (the default seed is QualitySettings's)
+    std::optional<uint32_t> seed;
     int steps = 0;                  ///< overrides the preset's view steps when > 0
     int accumulate = 0;             ///< overrides the preset's accumulated frames when > 0
     std::string config;             ///< TOML file applied after the preset (config/default.toml)
@@ -72,7 +74,7 @@ bool qualityFromOptions(const CommonRenderOptions& o, QualitySettings& q, std::s
 
 /// Creates `renderer` on the device the options name; on failure prints "skyservice <command>: why",
 /// leaves nothing allocated and returns false.
-bool startRenderer(const CommonRenderOptions& o, Renderer& renderer, const char* command);
+bool startRenderer(const CommonRenderOptions& o, uint32_t noiseSeed, Renderer& renderer, const char* command);
 
 int runRenderCommand(const RenderCommandOptions& options);
 int runShowcaseCommand(const ShowcaseOptions& options);

@@ -37,9 +37,6 @@ std::map<std::string, Key> keys()
         {"march.accumulation_frames", u32(&QualitySettings::accumulationFrames, 1, 64)},
         {"march.max_distance_m", real(&QualitySettings::maxDistanceM, 1000, 2000000)},
         {"march.reprojected", flag(&QualitySettings::reprojected)},
-        {"march.max_step_optical_depth", real(&QualitySettings::maxStepOpticalDepth, 0, 100)},
-        {"march.deep_step_factor", real(&QualitySettings::deepStepFactor, 1, 8)},
-        {"march.inside_cloud_block_px", u32(&QualitySettings::insideCloudBlockPx, 1, 2)},
         {"lighting.octaves", u32(&QualitySettings::octaves, 1, 8)},
         {"lighting.octave_attenuation", real(&QualitySettings::octaveAttenuation, 0, 1)},
         {"lighting.octave_contribution", real(&QualitySettings::octaveContribution, 0, 1)},
@@ -55,7 +52,6 @@ std::map<std::string, Key> keys()
         {"lighting.ambient_strength", real(&QualitySettings::ambientStrength, 0, 10)},
         {"shape.extinction_per_m", real(&QualitySettings::extinctionPerM, 1e-4, 1)},
         {"shape.detail_erosion", real(&QualitySettings::detailErosion, 0, 1)},
-        {"shape.detail_min_transmittance", real(&QualitySettings::detailMinTransmittance, 0, 1)},
         {"shape.detail", flag(&QualitySettings::detail)},
         {"shape.high_cloud", flag(&QualitySettings::highCloud)},
         {"noise.seed", u32(&QualitySettings::noiseSeed, 0, 4294967295.0)},
@@ -80,6 +76,10 @@ const std::map<std::string, const char*>& removedKeys()
         {"lighting.cone_tail_reuse_beyond_m", "--cone-tail-reuse-beyond"},
         {"lighting.deep_light_reuse_m", "--deep-light-reuse"},
         {"lighting.cone_near_merge_beyond_m", "--cone-near-merge-beyond"},
+        {"march.max_step_optical_depth", "--max-step-optical-depth"},
+        {"march.deep_step_factor", "--deep-step-factor"},
+        {"march.inside_cloud_block_px", "--inside-cloud-block"},
+        {"shape.detail_min_transmittance", "--detail-min-transmittance"},
     };
     return removed;
 }

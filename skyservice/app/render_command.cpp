@@ -6,7 +6,7 @@
 #include "skyservice/app/weather_source.h"
 #include "skyservice/render/reference_renderer.h"
 #include "skyservice/render/renderer.h"
-#include "skyservice/render/view_frustum.h"
+#include "skyservice/render/view_validation.h"
 #include "skyservice/sky/ephemeris.h"
 
 #include <CLI/CLI.hpp>
@@ -66,16 +66,17 @@ bool qualityFromOptions(const CommonRenderOptions& o, QualitySettings& q, std::s
         q.maxViewSteps = uint32_t(o.steps);
     if (o.accumulate > 0)
         q.accumulationFrames = uint32_t(o.accumulate);
-    q.noiseSeed = o.seed;
+    if (o.seed)
+        q.noiseSeed = *o.seed;
     return true;
 }
 
-bool startRenderer(const CommonRenderOptions& o, Renderer& renderer, const char* command)
+bool startRenderer(const CommonRenderOptions& o, uint32_t noiseSeed, Renderer& renderer, const char* command)
 {
     RendererOptions ro;
     ro.context.deviceSelector = o.device;
     ro.context.validation = o.validate;
-    ro.noiseSeed = o.seed;
+    ro.noiseSeed = noiseSeed;
     SkyStatus status = createRenderer(renderer, ro);
     if (status.ok())
         return true;
@@ -93,7 +94,7 @@ int runRenderCommand(const RenderCommandOptions& options)
         std::fprintf(stderr, "skyservice render: --time %s: %s\n", options.time.c_str(), error.c_str());
         return kExitUsage;
     }
-    if (!validateEyePose(request.pose, error) || !validateFrustum(request.frustum, error))
+    if (!validateView(request, error))  // refused before the device starts, as a usage error
     {
         std::fprintf(stderr, "skyservice render: %s\n", error.c_str());
         return kExitUsage;
@@ -117,7 +118,7 @@ int runRenderCommand(const RenderCommandOptions& options)
     }
 
     Renderer renderer;
-    if (!startRenderer(options.common, renderer, "render"))
+    if (!startRenderer(options.common, quality.noiseSeed, renderer, "render"))
         return kExitRuntime;
     setWeather(renderer, weather);
     RenderResult result;

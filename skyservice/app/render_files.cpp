@@ -77,7 +77,7 @@ bool writeRenderFiles(const std::string& prefix, const ViewRequest& request, con
     if (!writePng(prefix + ".png", png, error))
         return false;
 
-    // The EXR needs the linear frame, which a render makes only when asked (QualitySettings::linearOutput).
+    // The EXR needs the linear frame, which a render makes only when asked (ViewRequest::linearOutput).
     const bool exr = !result.linearRgbaHalf.empty();
     if (exr)
     {

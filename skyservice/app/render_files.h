@@ -22,7 +22,7 @@ struct RenderFacts
     nlohmann::json quality;      ///< the quality settings used
 };
 
-/// PREFIX.exr only when the result has the linear frame (QualitySettings::linearOutput). Also writes the
+/// PREFIX.exr only when the result has the linear frame (ViewRequest::linearOutput). Also writes the
 /// shadow map files (writeShadowMapFiles) and its metadata under "shadowMap" when the result has one.
 bool writeRenderFiles(const std::string& prefix, const ViewRequest& request, const RenderResult& result,
                       const RenderFacts& facts, std::string& error);

@@ -290,7 +290,7 @@ int runShowcaseCommand(const ShowcaseOptions& options)
 #endif
 
     Renderer renderer;
-    if (!startRenderer(options.common, renderer, "showcase"))
+    if (!startRenderer(options.common, quality.noiseSeed, renderer, "showcase"))
         return kExitRuntime;
     SkyStatus status;
 

@@ -62,6 +62,7 @@ struct BenchOptions
     double detailMinTransmittance = -1;  ///< < 0: the renderer's default
     double deepStepFactor = -1;          ///< < 0: the renderer's default
     double maxStepOpticalDepth = -1;     ///< < 0: the renderer's default
+    int64_t insideCloudBlockPx = 0;      ///< 0: the renderer's default
     double detailFadeStartM = -1, detailFadeEndM = -1;
     bool noDetail = false;
     bool noSkipping = false;
@@ -100,9 +101,9 @@ nlohmann::json qualityJson(const QualitySettings& q, const RenderTuning& t)
             {"coneStepM", q.coneStepM}, {"lightLodDistanceM", t.lightLodDistanceM},
             {"fullConeSamples", q.fullConeSamples}, {"detailFadeStartM", t.detailFadeStartM},
             {"detailFadeEndM", t.detailFadeEndM}, {"lightVolumeTexelM", q.lightVolumeTexelM},
-            {"lightVolumeMinRays", q.lightVolumeMinRays}, {"detailMinTransmittance", q.detailMinTransmittance},
-            {"deepStepFactor", q.deepStepFactor},
-            {"maxStepOpticalDepth", q.maxStepOpticalDepth}, {"emptySpaceSkipping", t.emptySpaceSkipping},
+            {"lightVolumeMinRays", q.lightVolumeMinRays}, {"detailMinTransmittance", t.detailMinTransmittance},
+            {"deepStepFactor", t.deepStepFactor}, {"maxStepOpticalDepth", t.maxStepOpticalDepth},
+            {"insideCloudBlockPx", t.insideCloudBlockPx}, {"emptySpaceSkipping", t.emptySpaceSkipping},
             {"lightVolumeFarCascade", t.lightVolumeFarCascade}, {"coneTailReuseM", t.coneTailReuseM},
             {"coneTailReuseBeyondM", t.coneTailReuseBeyondM}, {"deepLightReuseM", t.deepLightReuseM},
             {"coneNearMergeBeyondM", t.coneNearMergeBeyondM}, {"marchLookupTotals", t.marchLookupTotals}};
@@ -156,6 +157,11 @@ SkyStatus runScene(Renderer& r, const BenchOptions& o, const BenchScene& scene, 
     request.width = o.width;
     request.height = o.height;
     request.shadowMap = o.shadowMap;
+    request.copyToHost = false;  // no readback while timed
+    // No linear frame: an image generator reads the display image (the service makes the linear one only
+    // for EXR files), and the memory report is then what such a frame holds. The picture check reads the
+    // cloud radiance only.
+    request.linearOutput = false;
     std::string error;
     if (!parseIso8601Utc(scene.timeIso, request.unixTimeS, error))
         return SkyStatus::failure(scene.name + ": " + error, VK_ERROR_INITIALIZATION_FAILED);
@@ -180,8 +186,8 @@ SkyStatus runScene(Renderer& r, const BenchOptions& o, const BenchScene& scene, 
         out.cpuSetupMs.push_back(result.cpuSetupMs);
     }
     QualitySettings checked = quality;
-    checked.readback = true;
     checked.accumulationFrames = 1;
+    request.copyToHost = true;
     SKY_TRY(renderView(r, request, checked, result));
     out.sunElevationDeg = result.sunElevationDeg;
     out.marchBlockPx = result.marchBlockPx;
@@ -222,13 +228,8 @@ int runBench(const BenchOptions& o)
         std::fprintf(stderr, "sky-bench: --scene %s: %s\n", o.scene.c_str(), error.c_str());
         return kExitUsage;
     }
-    QualitySettings quality;  // the shipped defaults, no readback while timed
+    QualitySettings quality;  // the shipped defaults (the requests copy nothing back while timed: runScene)
     quality.accumulationFrames = o.gpuFrames;
-    quality.readback = false;
-    // No linear frame: an image generator reads the display image (the service makes the linear one only
-    // for EXR files), and the memory report is then what such a frame holds. The picture check reads the
-    // cloud radiance only.
-    quality.linearOutput = false;
     // Reprojected: every call is one frame of the temporal loop (march 1/16, reconstruct, composite),
     // reusing the previous call's image; --gpu-frames does not apply (a frame needs the one before).
     quality.reprojected = o.mode == "reprojected";
@@ -268,11 +269,13 @@ int runBench(const BenchOptions& o)
     if (o.lightVolumeMinRays >= 0)
         quality.lightVolumeMinRays = uint32_t(o.lightVolumeMinRays);
     if (o.detailMinTransmittance >= 0)
-        quality.detailMinTransmittance = o.detailMinTransmittance;
+        tuning.detailMinTransmittance = o.detailMinTransmittance;
     if (o.deepStepFactor >= 0)
-        quality.deepStepFactor = o.deepStepFactor;
+        tuning.deepStepFactor = o.deepStepFactor;
     if (o.maxStepOpticalDepth >= 0)
-        quality.maxStepOpticalDepth = o.maxStepOpticalDepth;
+        tuning.maxStepOpticalDepth = o.maxStepOpticalDepth;
+    if (o.insideCloudBlockPx > 0)
+        tuning.insideCloudBlockPx = uint32_t(o.insideCloudBlockPx);
     if (o.detailFadeStartM >= 0)
         tuning.detailFadeStartM = o.detailFadeStartM;
     if (o.detailFadeEndM >= 0)
@@ -412,6 +415,9 @@ int main(int argc, char** argv)
     app.add_option("--max-step-optical-depth", o.maxStepOpticalDepth,
                    "A step inside a cloud covers at most this optical depth (0: no limit)")
         ->check(CLI::Range(0.0, 100.0));
+    app.add_option("--inside-cloud-block", o.insideCloudBlockPx,
+                   "Reprojected, inside an overcast layer: march 1 pixel of every NxN block (default: the renderer's)")
+        ->check(CLI::Range(int64_t(1), int64_t(2)));
     app.add_option("--detail-fade-start", o.detailFadeStartM, "Detail erosion fades out from this distance (m)")
         ->check(CLI::Range(0.0, 1e7));
     app.add_option("--detail-fade-end", o.detailFadeEndM, "... to this distance (m)")->check(CLI::Range(0.0, 1e7));

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/cigi/cigi_decoder.h"
 
+#include "skyservice/cigi/cigi_fields.h"
 #include "skyservice/cigi/cigi_validate.h"
 
 #include <cstdio>
@@ -94,7 +95,8 @@ DecodeResult Decoder::decode(const uint8_t* data, size_t size)
         return drop(DecodeErrorKind::MissingIgControl,
                     describe("datagram does not begin with a 24-byte IG Control but with a packet", data[0], 0) +
                         " of size " + std::to_string(data[1]));
-    const uint16_t magic = static_cast<uint16_t>(data[6] << 8 | data[7]);
+    constexpr uint8_t kMagicAt = PacketLayout<IgControl>::magicOffset;
+    const uint16_t magic = static_cast<uint16_t>(data[kMagicAt] << 8 | data[kMagicAt + 1]);
     if (magic != kByteSwapMagic && magic != 0x0080)
     {
         char text[96];

@@ -2,7 +2,7 @@
 // CIGI 3.3 (SISO-STD-013, Common Image Generator Interface) packets this IG reads or writes: every field
 // of each packet, in the ICD's units, decoded from and encoded to either byte order.
 //
-// Where the layouts come from (offsets in bytes from the packet's first byte; bit 0 = least significant):
+// Each packet's layout (offsets, sizes, bits) is its field table in cigi_fields.h. Where the layouts come from:
 // the CIGI 3.3 ICD's packet tables as implemented by Wireshark's CIGI dissector
 // (epan/dissectors/packet-cigi.c: cigi3_3_add_ig_control, cigi3_3_add_entity_control,
 // cigi3_add_celestial_sphere_control, cigi3_add_atmosphere_control, cigi3_add_environmental_region_control,
@@ -15,6 +15,7 @@
 // Only the layouts were read there; the code is this project's own.
 #pragma once
 
+#include "shaders/shared/cloud_type.h"
 #include "skyservice/cigi/cigi_wire.h"
 
 #include <cstdint>
@@ -77,21 +78,8 @@ enum WeatherLayerId : uint8_t
     kLayerDust = 9,
 };
 
-/// Weather Control "Cloud Type" (4 bits); 11-15 are "Other" (IG-defined).
-enum class CloudType : uint8_t
-{
-    None = 0,
-    Altocumulus = 1,
-    Altostratus = 2,
-    Cirrocumulus = 3,
-    Cirrostratus = 4,
-    Cirrus = 5,
-    Cumulonimbus = 6,
-    Cumulus = 7,
-    Nimbostratus = 8,
-    Stratocumulus = 9,
-    Stratus = 10,
-};
+/// Weather Control "Cloud Type" (4 bits): the project's one list of genera (11-15 are "Other", IG-defined).
+using sky::CloudType;
 
 /// Weather Control "Scope" (2 bits; 3 is not defined).
 enum class WeatherScope : uint8_t
@@ -123,15 +111,15 @@ enum EnvironmentalRequestBits : uint8_t
 /// IG Control (opcode 1, 24 bytes): the first packet of every host datagram.
 struct IgControl
 {
-    uint8_t majorVersion = kCigiMajorVersion;  ///< byte 2
-    int8_t databaseNumber = 0;                 ///< byte 3; 0 = no change, negative = "not available"
-    uint8_t igMode = 1;                        ///< byte 4 bits 0-1: 0 Reset/Standby, 1 Operate, 2 Debug
-    bool timestampValid = false;               ///< byte 4 bit 2
-    bool extrapolationEnable = false;          ///< byte 4 bit 3: host allows dead reckoning
-    uint8_t minorVersion = kCigiMinorVersion;  ///< byte 4 bits 4-7
-    uint32_t hostFrameNumber = 0;              ///< byte 8
-    uint32_t timestamp10us = 0;                ///< byte 12: host time, 10 µs ticks
-    uint32_t lastIgFrameNumber = 0;            ///< byte 16: IG frame of the last Start of Frame the host got
+    uint8_t majorVersion = kCigiMajorVersion;
+    int8_t databaseNumber = 0;                 ///< 0 = no change, negative = "not available"
+    uint8_t igMode = 1;                        ///< 0 Reset/Standby, 1 Operate, 2 Debug
+    bool timestampValid = false;
+    bool extrapolationEnable = false;          ///< host allows dead reckoning
+    uint8_t minorVersion = kCigiMinorVersion;
+    uint32_t hostFrameNumber = 0;
+    uint32_t timestamp10us = 0;                ///< host time, 10 µs ticks
+    uint32_t lastIgFrameNumber = 0;            ///< IG frame of the last Start of Frame the host got
 
     bool operator==(const IgControl&) const = default;
 };
@@ -139,25 +127,25 @@ struct IgControl
 /// Entity Control (opcode 2, 48 bytes).
 struct EntityControl
 {
-    uint16_t entityId = 0;             ///< byte 2
-    uint8_t entityState = 1;           ///< byte 4 bits 0-1: 0 Inactive/Standby, 1 Active, 2 Destroyed
-    bool attached = false;             ///< byte 4 bit 2: pose is relative to the parent entity
-    bool collisionDetection = false;   ///< byte 4 bit 3
-    bool inheritAlpha = false;         ///< byte 4 bit 4
-    uint8_t groundOceanClamp = 0;      ///< byte 4 bits 5-6: 0 none, 1 non-conformal, 2 conformal
-    bool animationBackward = false;    ///< byte 5 bit 0 (Animation Direction)
-    bool animationContinuous = false;  ///< byte 5 bit 1 (Animation Loop Mode)
-    uint8_t animationState = 0;        ///< byte 5 bits 2-3: 0 Stop, 1 Pause, 2 Play, 3 Continue
-    bool extrapolationEnable = false;  ///< byte 5 bit 4
-    uint8_t alpha = 255;               ///< byte 6
-    uint16_t entityType = 0;           ///< byte 8
-    uint16_t parentId = 0;             ///< byte 10
-    float rollDeg = 0;                 ///< byte 12
-    float pitchDeg = 0;                ///< byte 16
-    float yawDeg = 0;                  ///< byte 20
-    double latDegOrXM = 0;             ///< byte 24: geodetic latitude (detached) or X offset (attached, m)
-    double lonDegOrYM = 0;             ///< byte 32: longitude (detached) or Y offset (attached, m)
-    double altMslMOrZM = 0;            ///< byte 40: altitude above mean sea level (detached) or Z offset (m)
+    uint16_t entityId = 0;
+    uint8_t entityState = 1;           ///< 0 Inactive/Standby, 1 Active, 2 Destroyed
+    bool attached = false;             ///< pose is relative to the parent entity
+    bool collisionDetection = false;
+    bool inheritAlpha = false;
+    uint8_t groundOceanClamp = 0;      ///< 0 none, 1 non-conformal, 2 conformal
+    bool animationBackward = false;    ///< Animation Direction
+    bool animationContinuous = false;  ///< Animation Loop Mode
+    uint8_t animationState = 0;        ///< 0 Stop, 1 Pause, 2 Play, 3 Continue
+    bool extrapolationEnable = false;
+    uint8_t alpha = 255;
+    uint16_t entityType = 0;
+    uint16_t parentId = 0;
+    float rollDeg = 0;
+    float pitchDeg = 0;
+    float yawDeg = 0;
+    double latDegOrXM = 0;             ///< geodetic latitude (detached) or X offset (attached, m)
+    double lonDegOrYM = 0;             ///< longitude (detached) or Y offset (attached, m)
+    double altMslMOrZM = 0;            ///< altitude above mean sea level (detached) or Z offset (m)
 
     bool operator==(const EntityControl&) const = default;
 };
@@ -165,15 +153,15 @@ struct EntityControl
 /// Celestial Sphere Control (opcode 9, 16 bytes). The 3.3 packet carries no seconds field.
 struct CelestialSphereControl
 {
-    uint8_t hour = 0;              ///< byte 2, UTC 0-23
-    uint8_t minute = 0;            ///< byte 3, 0-59
-    bool ephemerisEnable = false;  ///< byte 4 bit 0: time advances on the IG (else static)
-    bool sunEnable = false;        ///< byte 4 bit 1
-    bool moonEnable = false;       ///< byte 4 bit 2
-    bool starFieldEnable = false;  ///< byte 4 bit 3
-    bool dateTimeValid = false;    ///< byte 4 bit 4: hour, minute and date are to be used
-    uint32_t dateMMDDYYYY = 0;     ///< byte 8, e.g. 6212026 for 21 June 2026
-    float starFieldIntensityPct = 0;  ///< byte 12, 0-100
+    uint8_t hour = 0;              ///< UTC 0-23
+    uint8_t minute = 0;            ///< 0-59
+    bool ephemerisEnable = false;  ///< time advances on the IG (else static)
+    bool sunEnable = false;
+    bool moonEnable = false;
+    bool starFieldEnable = false;
+    bool dateTimeValid = false;    ///< hour, minute and date are to be used
+    uint32_t dateMMDDYYYY = 0;     ///< e.g. 6212026 for 21 June 2026
+    float starFieldIntensityPct = 0;  ///< 0-100
 
     bool operator==(const CelestialSphereControl&) const = default;
 };
@@ -181,14 +169,14 @@ struct CelestialSphereControl
 /// Atmosphere Control (opcode 10, 32 bytes).
 struct AtmosphereControl
 {
-    bool atmosphericModelEnable = false;  ///< byte 2 bit 0
-    uint8_t humidityPct = 0;              ///< byte 3, 0-100
-    float airTemperatureC = 0;            ///< byte 4
-    float visibilityM = 0;                ///< byte 8, >= 0
-    float horizontalWindMps = 0;          ///< byte 12, >= 0
-    float verticalWindMps = 0;            ///< byte 16
-    float windDirectionDeg = 0;           ///< byte 20: the direction the wind blows from, true north
-    float pressureHpa = 0;                ///< byte 24 (mb)
+    bool atmosphericModelEnable = false;
+    uint8_t humidityPct = 0;              ///< 0-100
+    float airTemperatureC = 0;
+    float visibilityM = 0;                ///< >= 0
+    float horizontalWindMps = 0;          ///< >= 0
+    float verticalWindMps = 0;
+    float windDirectionDeg = 0;           ///< the direction the wind blows from, true north
+    float pressureHpa = 0;                ///< mb
 
     bool operator==(const AtmosphereControl&) const = default;
 };
@@ -196,19 +184,19 @@ struct AtmosphereControl
 /// Environmental Region Control (opcode 11, 48 bytes): a rounded rectangle, rotated, with a transition band.
 struct EnvironmentalRegionControl
 {
-    uint16_t regionId = 0;            ///< byte 2
-    uint8_t regionState = 0;          ///< byte 4 bits 0-1: RegionState
-    bool mergeWeather = false;        ///< byte 4 bit 2
-    bool mergeAerosol = false;        ///< byte 4 bit 3
-    bool mergeMaritime = false;       ///< byte 4 bit 4
-    bool mergeTerrestrial = false;    ///< byte 4 bit 5
-    double latDeg = 0;                ///< byte 8, centre
-    double lonDeg = 0;                ///< byte 16
-    float sizeXM = 0;                 ///< byte 24, along the region's X axis (north when rotation is 0)
-    float sizeYM = 0;                 ///< byte 28
-    float cornerRadiusM = 0;          ///< byte 32
-    float rotationDeg = 0;            ///< byte 36, yaw from true north
-    float transitionPerimeterM = 0;   ///< byte 40, band outside the rectangle over which it fades out
+    uint16_t regionId = 0;
+    uint8_t regionState = 0;          ///< RegionState
+    bool mergeWeather = false;
+    bool mergeAerosol = false;
+    bool mergeMaritime = false;
+    bool mergeTerrestrial = false;
+    double latDeg = 0;                ///< centre
+    double lonDeg = 0;
+    float sizeXM = 0;                 ///< along the region's X axis (north when rotation is 0)
+    float sizeYM = 0;
+    float cornerRadiusM = 0;
+    float rotationDeg = 0;            ///< yaw from true north
+    float transitionPerimeterM = 0;   ///< band outside the rectangle over which it fades out
 
     bool operator==(const EnvironmentalRegionControl&) const = default;
 };
@@ -216,28 +204,28 @@ struct EnvironmentalRegionControl
 /// Weather Control (opcode 12, 56 bytes).
 struct WeatherControl
 {
-    uint16_t entityOrRegionId = 0;     ///< byte 2 (unused for global scope)
-    uint8_t layerId = 0;               ///< byte 4: WeatherLayerId
-    uint8_t humidityPct = 0;           ///< byte 5, 0-100
-    bool weatherEnable = false;        ///< byte 6 bit 0
-    bool scudEnable = false;           ///< byte 6 bit 1
-    bool randomWindsEnable = false;    ///< byte 6 bit 2
-    bool randomLightningEnable = false;  ///< byte 6 bit 3
-    uint8_t cloudType = 0;             ///< byte 6 bits 4-7: CloudType
-    uint8_t scope = 0;                 ///< byte 7 bits 0-1: WeatherScope
-    uint8_t severity = 0;              ///< byte 7 bits 2-4, 0 (least) - 5 (most)
-    float airTemperatureC = 0;         ///< byte 8
-    float visibilityM = 0;             ///< byte 12, >= 0
-    float scudFrequencyPct = 0;        ///< byte 16, 0-100
-    float coveragePct = 0;             ///< byte 20, 0-100
-    float baseElevationM = 0;          ///< byte 24, above mean sea level
-    float thicknessM = 0;              ///< byte 28, >= 0
-    float transitionBandM = 0;         ///< byte 32, >= 0: fade above and below the layer
-    float horizontalWindMps = 0;       ///< byte 36, >= 0
-    float verticalWindMps = 0;         ///< byte 40
-    float windDirectionDeg = 0;        ///< byte 44
-    float pressureHpa = 0;             ///< byte 48
-    float aerosolGPerM3 = 0;           ///< byte 52, >= 0
+    uint16_t entityOrRegionId = 0;     ///< unused for global scope
+    uint8_t layerId = 0;               ///< WeatherLayerId
+    uint8_t humidityPct = 0;           ///< 0-100
+    bool weatherEnable = false;
+    bool scudEnable = false;
+    bool randomWindsEnable = false;
+    bool randomLightningEnable = false;
+    uint8_t cloudType = 0;             ///< CloudType (shaders/shared/cloud_type.h)
+    uint8_t scope = 0;                 ///< WeatherScope
+    uint8_t severity = 0;              ///< 0 (least) - 5 (most)
+    float airTemperatureC = 0;
+    float visibilityM = 0;             ///< >= 0
+    float scudFrequencyPct = 0;        ///< 0-100
+    float coveragePct = 0;             ///< 0-100
+    float baseElevationM = 0;          ///< above mean sea level
+    float thicknessM = 0;              ///< >= 0
+    float transitionBandM = 0;         ///< >= 0: fade above and below the layer
+    float horizontalWindMps = 0;       ///< >= 0
+    float verticalWindMps = 0;
+    float windDirectionDeg = 0;
+    float pressureHpa = 0;
+    float aerosolGPerM3 = 0;           ///< >= 0
 
     bool operator==(const WeatherControl&) const = default;
 };
@@ -245,21 +233,21 @@ struct WeatherControl
 /// View Control (opcode 16, 32 bytes): the eye's offset and attitude relative to an entity.
 struct ViewControl
 {
-    uint16_t viewId = 0;         ///< byte 2
-    uint8_t groupId = 0;         ///< byte 4; 0 = the view alone, else every view of that group
-    bool xOffsetEnable = false;  ///< byte 5 bit 0
-    bool yOffsetEnable = false;  ///< byte 5 bit 1
-    bool zOffsetEnable = false;  ///< byte 5 bit 2
-    bool rollEnable = false;     ///< byte 5 bit 3
-    bool pitchEnable = false;    ///< byte 5 bit 4
-    bool yawEnable = false;      ///< byte 5 bit 5
-    uint16_t entityId = 0;       ///< byte 6
-    float xOffsetM = 0;          ///< byte 8 (entity body axes: X forward, Y right, Z down)
-    float yOffsetM = 0;          ///< byte 12
-    float zOffsetM = 0;          ///< byte 16
-    float rollDeg = 0;           ///< byte 20
-    float pitchDeg = 0;          ///< byte 24
-    float yawDeg = 0;            ///< byte 28
+    uint16_t viewId = 0;
+    uint8_t groupId = 0;         ///< 0 = the view alone, else every view of that group
+    bool xOffsetEnable = false;
+    bool yOffsetEnable = false;
+    bool zOffsetEnable = false;
+    bool rollEnable = false;
+    bool pitchEnable = false;
+    bool yawEnable = false;
+    uint16_t entityId = 0;
+    float xOffsetM = 0;          ///< entity body axes: X forward, Y right, Z down
+    float yOffsetM = 0;
+    float zOffsetM = 0;
+    float rollDeg = 0;
+    float pitchDeg = 0;
+    float yawDeg = 0;
 
     bool operator==(const ViewControl&) const = default;
 };
@@ -267,25 +255,25 @@ struct ViewControl
 /// View Definition (opcode 21, 32 bytes): the view's asymmetric frustum.
 struct ViewDefinition
 {
-    uint16_t viewId = 0;          ///< byte 2
-    uint8_t groupId = 0;          ///< byte 4
-    bool nearEnable = false;      ///< byte 5 bit 0
-    bool farEnable = false;       ///< byte 5 bit 1
-    bool leftEnable = false;      ///< byte 5 bit 2
-    bool rightEnable = false;     ///< byte 5 bit 3
-    bool topEnable = false;       ///< byte 5 bit 4
-    bool bottomEnable = false;    ///< byte 5 bit 5
-    uint8_t mirrorMode = 0;       ///< byte 5 bits 6-7: 0 none, 1 horizontal, 2 vertical, 3 both
-    uint8_t pixelReplication = 0; ///< byte 6 bits 0-2
-    bool orthographic = false;    ///< byte 6 bit 3 (Projection Type)
-    bool reorder = false;         ///< byte 6 bit 4
-    uint8_t viewType = 0;         ///< byte 6 bits 5-7 (IG-defined)
-    float nearM = 0;              ///< byte 8
-    float farM = 0;               ///< byte 12
-    float leftDeg = 0;            ///< byte 16, half-angle, negative to the left of the view axis
-    float rightDeg = 0;           ///< byte 20
-    float topDeg = 0;             ///< byte 24
-    float bottomDeg = 0;          ///< byte 28, negative below the view axis
+    uint16_t viewId = 0;
+    uint8_t groupId = 0;
+    bool nearEnable = false;
+    bool farEnable = false;
+    bool leftEnable = false;
+    bool rightEnable = false;
+    bool topEnable = false;
+    bool bottomEnable = false;
+    uint8_t mirrorMode = 0;       ///< 0 none, 1 horizontal, 2 vertical, 3 both
+    uint8_t pixelReplication = 0;
+    bool orthographic = false;    ///< Projection Type
+    bool reorder = false;
+    uint8_t viewType = 0;         ///< IG-defined
+    float nearM = 0;
+    float farM = 0;
+    float leftDeg = 0;            ///< half-angle, negative to the left of the view axis
+    float rightDeg = 0;
+    float topDeg = 0;
+    float bottomDeg = 0;          ///< negative below the view axis
 
     bool operator==(const ViewDefinition&) const = default;
 };
@@ -293,11 +281,11 @@ struct ViewDefinition
 /// Environmental Conditions Request (opcode 28, 32 bytes).
 struct EnvironmentalConditionsRequest
 {
-    uint8_t requestType = 0;  ///< byte 2 bits 0-3: EnvironmentalRequestBits
-    uint8_t requestId = 0;    ///< byte 3
-    double latDeg = 0;        ///< byte 8
-    double lonDeg = 0;        ///< byte 16
-    double altMslM = 0;       ///< byte 24
+    uint8_t requestType = 0;  ///< EnvironmentalRequestBits
+    uint8_t requestId = 0;
+    double latDeg = 0;
+    double lonDeg = 0;
+    double altMslM = 0;
 
     bool operator==(const EnvironmentalConditionsRequest&) const = default;
 };
@@ -307,16 +295,16 @@ struct EnvironmentalConditionsRequest
 /// Start of Frame (opcode 101, 24 bytes): the first packet of every IG datagram.
 struct StartOfFrame
 {
-    uint8_t majorVersion = kCigiMajorVersion;  ///< byte 2
-    int8_t databaseNumber = 0;                 ///< byte 3
-    uint8_t igStatus = 0;                      ///< byte 4: 0 = normal, else an IG-defined error code
-    uint8_t igMode = 1;                        ///< byte 5 bits 0-1: 0 Reset/Standby, 1 Operate, 2 Debug, 3 Offline
-    bool timestampValid = false;               ///< byte 5 bit 2
-    bool earthReferenceModelCustom = false;    ///< byte 5 bit 3: false = WGS 84
-    uint8_t minorVersion = kCigiMinorVersion;  ///< byte 5 bits 4-7
-    uint32_t igFrameNumber = 0;                ///< byte 8
-    uint32_t timestamp10us = 0;                ///< byte 12
-    uint32_t lastHostFrameNumber = 0;          ///< byte 16
+    uint8_t majorVersion = kCigiMajorVersion;
+    int8_t databaseNumber = 0;
+    uint8_t igStatus = 0;                      ///< 0 = normal, else an IG-defined error code
+    uint8_t igMode = 1;                        ///< 0 Reset/Standby, 1 Operate, 2 Debug, 3 Offline
+    bool timestampValid = false;
+    bool earthReferenceModelCustom = false;    ///< false = WGS 84
+    uint8_t minorVersion = kCigiMinorVersion;
+    uint32_t igFrameNumber = 0;
+    uint32_t timestamp10us = 0;
+    uint32_t lastHostFrameNumber = 0;
 
     bool operator==(const StartOfFrame&) const = default;
 };
@@ -324,14 +312,14 @@ struct StartOfFrame
 /// Weather Conditions Response (opcode 109, 32 bytes).
 struct WeatherConditionsResponse
 {
-    uint8_t requestId = 0;        ///< byte 2
-    uint8_t humidityPct = 0;      ///< byte 3
-    float airTemperatureC = 0;    ///< byte 4
-    float visibilityM = 0;        ///< byte 8
-    float horizontalWindMps = 0;  ///< byte 12
-    float verticalWindMps = 0;    ///< byte 16
-    float windDirectionDeg = 0;   ///< byte 20
-    float pressureHpa = 0;        ///< byte 24
+    uint8_t requestId = 0;
+    uint8_t humidityPct = 0;
+    float airTemperatureC = 0;
+    float visibilityM = 0;
+    float horizontalWindMps = 0;
+    float verticalWindMps = 0;
+    float windDirectionDeg = 0;
+    float pressureHpa = 0;
 
     bool operator==(const WeatherConditionsResponse&) const = default;
 };
@@ -339,9 +327,9 @@ struct WeatherConditionsResponse
 /// Aerosol Concentration Response (opcode 110, 8 bytes): one per weather layer at the point asked.
 struct AerosolConcentrationResponse
 {
-    uint8_t requestId = 0;      ///< byte 2
-    uint8_t layerId = 0;        ///< byte 3
-    float aerosolGPerM3 = 0;    ///< byte 4
+    uint8_t requestId = 0;
+    uint8_t layerId = 0;
+    float aerosolGPerM3 = 0;
 
     bool operator==(const AerosolConcentrationResponse&) const = default;
 };

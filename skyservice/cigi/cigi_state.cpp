@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/cigi/cigi_state.h"
 
+#include "weather_ingest/civil_time.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,17 +15,6 @@ double wrapLonDeg(double lonDeg)
 {
     const double wrapped = std::fmod(lonDeg + 180.0, 360.0);
     return (wrapped < 0 ? wrapped + 360.0 : wrapped) - 180.0;
-}
-
-// Days from 1970-01-01 to a proleptic Gregorian date (Howard Hinnant's days_from_civil algorithm).
-long long daysFromCivil(int year, int month, int day)
-{
-    const int y = year - (month <= 2 ? 1 : 0);
-    const int era = (y >= 0 ? y : y - 399) / 400;
-    const int yearOfEra = y - era * 400;
-    const int dayOfYear = (153 * (month + (month > 2 ? -3 : 9)) + 2) / 5 + day - 1;
-    const int dayOfEra = yearOfEra * 365 + yearOfEra / 4 - yearOfEra / 100 + dayOfYear;
-    return static_cast<long long>(era) * 146097 + dayOfEra - 719468;
 }
 
 struct Applier
@@ -205,7 +196,7 @@ struct Applier
 
 double SimulatedTime::unixTimeS() const
 {
-    return static_cast<double>(daysFromCivil(year, month, day)) * 86400.0 + hour * 3600.0 + minute * 60.0 + seconds;
+    return static_cast<double>(unixTimeFromCivil(year, month, day, hour, minute, 0)) + seconds;
 }
 
 double simulatedUnixTimeS(const SimulatedTime& time, double secondsSinceSet)

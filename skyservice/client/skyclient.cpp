@@ -9,6 +9,7 @@
 
 #include "skyservice/ipc/fd_passing.h"
 #include "skyservice/ipc/shm_ring.h"
+#include "weather_ingest/civil_time.h"
 
 #include <nlohmann/json.hpp>
 
@@ -206,12 +207,7 @@ SkyResult expectType(SkyClient* c, const json& reply, const char* type)
 /// Whole seconds, as PROTOCOL.md's ISO 8601 form (the service's parser takes no fraction).
 std::string isoTime(double unixTimeS)
 {
-    time_t t = time_t(std::llround(unixTimeS));
-    tm utc{};
-    gmtime_r(&t, &utc);
-    char buffer[32];
-    std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &utc);
-    return buffer;
+    return sky::formatIso8601Utc(std::llround(unixTimeS));
 }
 
 SkyResult mapRing(SkyClient* c, const json& reply)

@@ -4,16 +4,16 @@
 namespace sky
 {
 
-FrameOutputs FrameOutputs::of(const ViewRequest& request, const QualitySettings& quality)
+FrameOutputs FrameOutputs::of(const ViewRequest& request)
 {
     FrameOutputs o;
-    o.linearImage = quality.linearOutput;
+    o.linearImage = request.linearOutput;
     const uint32_t bits = request.readback;
     // Layers kept on the GPU for the export are drawn even when nothing is read back (sky-bench).
     o.sky = (bits & kDrawSky) != 0;
     o.cloudLayer = (bits & kDrawCloudLayer) != 0;
     o.depthLayer = (bits & kDrawDepthLayer) != 0;
-    if (!quality.readback)
+    if (!request.copyToHost)
         return o;
     o.display = (bits & kReadDisplay) != 0;
     o.cloud = (bits & kReadCloud) != 0;
@@ -25,7 +25,7 @@ FrameOutputs FrameOutputs::of(const ViewRequest& request, const QualitySettings&
     o.cloudLayer = o.cloudLayer || o.readCloudLayer;
     o.depthLayer = o.depthLayer || o.readDepthLayer;
     o.shadowDetail = (bits & kReadShadowDetail) != 0;
-    o.linear = quality.linearOutput;
+    o.linear = request.linearOutput;
     return o;
 }
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // What a frame draws and reads back beyond the display image: from the request's readback bits
-// (render_types.h kRead* / kDraw*) and the quality's linearOutput and readback switches.
+// (render_types.h kRead* / kDraw*) and its linearOutput and copyToHost switches.
 #pragma once
 
 #include "skyservice/render/render_types.h"
@@ -18,7 +18,7 @@ struct FrameOutputs
     bool shadowDetail = false;
     bool linearImage = false;  ///< the composite writes the linear frame (even when not read back)
 
-    static FrameOutputs of(const ViewRequest& request, const QualitySettings& quality);
+    static FrameOutputs of(const ViewRequest& request);
 };
 
 }  // namespace sky

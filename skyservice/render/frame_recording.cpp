@@ -46,15 +46,15 @@ SkyStatus prepareFrameImages(Renderer& r, const ViewRequest& request, const Qual
     return SkyStatus::success();
 }
 
-VkDeviceSize frameReadbackBytes(const Renderer& r, const ViewRequest& request, const QualitySettings& quality)
+VkDeviceSize frameReadbackBytes(const Renderer& r, const ViewRequest& request)
 {
-    const FrameOutputs o = FrameOutputs::of(request, quality);
+    const FrameOutputs o = FrameOutputs::of(request);
     VkDeviceSize bytes = 0;
     const std::pair<bool, const Image*> images[] = {
         {o.display, &r.composite.displayImage}, {o.cloud, &r.march.cloudImage},      {o.depth, &r.march.depthImage},
         {o.linear, &r.composite.linearImage},   {o.readSky, &r.composite.skyImage},
         {o.readCloudLayer, &r.composite.cloudLayerImage}, {o.readDepthLayer, &r.composite.depthLayerImage},
-        {request.shadowMap && quality.readback, &r.shadowPass.transmittance},
+        {request.shadowMap && request.copyToHost, &r.shadowPass.transmittance},
         {request.shadowMap && o.shadowDetail, &r.shadowPass.image},
     };
     for (const auto& [wanted, image] : images)
@@ -98,7 +98,7 @@ void recordFrame(Renderer& r, FrameContext& frame, const ViewRequest& request, c
                  RenderResult& facts)
 {
     const bool reprojected = in.quality->reprojected;
-    const FrameOutputs outputs = FrameOutputs::of(request, *in.quality);
+    const FrameOutputs outputs = FrameOutputs::of(request);
     const PassFrame f = passFrame(r, frame);
     VkCommandBuffer cmd = frame.cmd;
     recordNewImages(cmd, r.newImages);

@@ -31,7 +31,7 @@ SkyStatus prepareFrameImages(Renderer& r, const ViewRequest& request, const Qual
                              const FrameOutputs& outputs);
 
 /// Bytes of the readback buffer the frame needs (its images must exist: after prepareFrameImages).
-VkDeviceSize frameReadbackBytes(const Renderer& r, const ViewRequest& request, const QualitySettings& quality);
+VkDeviceSize frameReadbackBytes(const Renderer& r, const ViewRequest& request);
 
 /// What every pass of the frame being recorded in `frame` reads besides its own inputs.
 PassFrame passFrame(const Renderer& r, const FrameContext& frame);

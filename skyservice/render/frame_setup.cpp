@@ -197,7 +197,7 @@ uint32_t frameFlags(const FrameInputs& in, const RenderTuning& t)
         flags |= FRAME_FLAG_NO_DETAIL;
     if (!q.highCloud)
         flags |= FRAME_FLAG_NO_HIGH_CLOUD;
-    if (!q.linearOutput)
+    if (!in.request->linearOutput)
         flags |= FRAME_FLAG_NO_LINEAR_OUTPUT;
     if (q.reprojected)
         flags |= FRAME_FLAG_REPROJECTED;
@@ -256,9 +256,9 @@ MarchParams marchParams(const QualitySettings& q, const RenderTuning& t, const V
     m.detailFadeEndM = float(std::max(t.detailFadeEndM, t.detailFadeStartM + 1.0));
     m.coneCheapBeyondM = float(std::max(t.lightLodDistanceM, 0.0));
     m.fullConeSamples = q.fullConeSamples;
-    m.detailMinTransmittance = float(q.detailMinTransmittance);
-    m.deepStepFactor = float(std::max(q.deepStepFactor, 1.0));
-    m.maxStepOpticalDepth = float(std::max(q.maxStepOpticalDepth, 0.0));
+    m.detailMinTransmittance = float(t.detailMinTransmittance);
+    m.deepStepFactor = float(std::max(t.deepStepFactor, 1.0));
+    m.maxStepOpticalDepth = float(std::max(t.maxStepOpticalDepth, 0.0));
     return m;
 }
 

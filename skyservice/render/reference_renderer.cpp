@@ -270,7 +270,7 @@ SkyStatus renderReference(Renderer& r, ReferenceRenderer& ref, const ViewRequest
 
     // The real-time composite over the path-traced clouds, into the images the frame asked for, wired as
     // a full-resolution frame's. No depth layer: the path tracer finds no front.
-    FrameOutputs outputs = FrameOutputs::of(request, q);
+    FrameOutputs outputs = FrameOutputs::of(request);
     FrameOutputs composited = outputs;
     composited.depthLayer = false;
     OneShot shot;

@@ -5,6 +5,8 @@
 // preset sets; these stay at the defaults below unless a benchmark or a test changes Renderer::tuning.
 #pragma once
 
+#include <cstdint>
+
 namespace sky
 {
 
@@ -26,7 +28,7 @@ struct RenderTuning
     /// light where a taken tail is too short) they brighten a deck seen from high up slightly, less than
     /// the cascade's texels holding those tails would (tests/gpu/test_light_volume.cpp, far cascade).
     double coneTailReuseBeyondM = 15000.0;
-    /// Deep lit samples (behind a view transmittance below QualitySettings::detailMinTransmittance) within
+    /// Deep lit samples (behind a view transmittance below detailMinTransmittance) within
     /// this distance (m) of the last cone marched take its light and march none (0: each marches its own).
     /// What they add reaches the eye through less than a tenth, so an error in their light hardly shows
     /// (speed and picture cost: BENCHMARKS.md).
@@ -38,6 +40,29 @@ struct RenderTuning
     /// single sample sees less of a cloud's thin sunlit skin, so the clouds it lights come out brighter;
     /// a nearer limit changes more of the picture (figures: BENCHMARKS.md, tests/gpu/test_cone_tail.cpp).
     double coneNearMergeBeyondM = 40000.0;
+    /// View samples behind a view transmittance below this take the base shape without detail erosion
+    /// (0: never): little of such a sample reaches the eye. 0.2, not 0.1, because the current cloud
+    /// shapes make each eroded sample dear (speed and picture cost: BENCHMARKS.md;
+    /// tests/gpu/test_render.cpp checks the picture against the render that erodes every sample).
+    double detailMinTransmittance = 0.2;
+    /// Those deep view samples also step this many times further (1: the same step): fewer lookups per
+    /// frame for a picture the bench scenes' contact sheet cannot tell apart (BENCHMARKS.md).
+    double deepStepFactor = 2.0;
+    /// A step inside a cloud covers at most this optical depth at the sample's extinction (the sample at
+    /// a surface: at full density; while the view transmittance is above 0.5: at least half of it), so
+    /// that the sunlit skin, a mean free path deep, gets its samples where the distance-grown step is
+    /// longer (0: no limit). With no limit the sunlit side of a cumulus comes out too dark
+    /// (tests/gpu/test_render.cpp SunSideOfACumulusIsBrighterThanItsShadowSide,
+    /// CloudStepsConvergeOnFinerSteps), though frames are cheaper (BENCHMARKS.md).
+    double maxStepOpticalDepth = 1.0;
+    /// Reprojected frames march one pixel of every NxN block with the eye inside an overcast cloud layer
+    /// (between its base and top, coverage >= 0.8 around it: fog; reprojection.h kOvercastCoverage): 2 (a
+    /// quarter of the pixels, 4x those of the usual 4x4 block), or 1 (every pixel: the frame equals a full
+    /// render). In a broken or scattered layer it is always 1. In fog a pixel's radiance comes from the
+    /// first ~100 m of cloud, which moves little per frame, so block 2 stays close to the full render
+    /// while turning fast inside an overcast deck (tests/gpu/test_flight_path.cpp) at a fraction of block
+    /// 1's cost (BENCHMARKS.md).
+    uint32_t insideCloudBlockPx = 2;
     double detailFadeStartM = 8000.0;  ///< detail erosion fades out from here...
     double detailFadeEndM = 25000.0;   ///< ...to here (beyond, its noise is finer than a pixel)
     /// With the light volume, also its far cascade of 2x wider texels (15.4 km around the eye): lit

@@ -28,26 +28,10 @@ struct QualitySettings
     /// every cone sample marched.
     double lightVolumeTexelM = 160.0;
     /// Frames that march fewer rays than this (pixels / march block^2) draw no light volume: its build
-    /// (221 184 texels x 5 density lookups) then costs more than it saves: a 640x360 reprojected frame
-    /// (14 400 rays) is slower with the volume, a 1920x1080 one (130 000 rays) faster (BENCHMARKS.md).
+    /// (221 184 texels x 5 density lookups) then costs more than it saves: on a small reprojected frame
+    /// the volume is slower, on a 1920x1080 one faster (BENCHMARKS.md). A setting: the device decides,
+    /// not an experiment knob.
     uint32_t lightVolumeMinRays = 50000;
-    /// View samples behind a view transmittance below this take the base shape without detail erosion
-    /// (0: never): there little of the sample reaches the eye. 0.2, not 0.1, because the current cloud
-    /// shapes make each eroded sample dear (faster frames in the deck and cumulus scenes: BENCHMARKS.md);
-    /// the 320x180 contact sheet of the bench scenes 45-55 dB (display) of 0.1's, and the deck from above
-    /// 41 dB (cloud radiance) of the render that erodes every sample (47 dB at 0.1; tests/gpu/test_render.cpp).
-    double detailMinTransmittance = 0.2;
-    /// Those deep view samples also step this many times further (1: the same step): fewer lookups per
-    /// frame (BENCHMARKS.md); the 320x180 contact sheet of the bench scenes 67 dB of 1.
-    double deepStepFactor = 2.0;
-    /// A step inside a cloud covers at most this optical depth at the sample's extinction (the sample at
-    /// a surface: at full density; while the view transmittance is above 0.5: at least half of it), so
-    /// that the sunlit skin, a mean free path deep, gets its samples where the distance-grown step is
-    /// longer (0: no limit). Against 5x finer steps (tests/gpu/test_render.cpp
-    /// CloudStepsConvergeOnFinerSteps): 36.0 / 42.2 dB. With no limit the sunlit side of a cumulus is 15 %
-    /// too dark (test SunSideOfACumulusIsBrighterThanItsShadowSide fails), though frames are cheaper
-    /// (BENCHMARKS.md).
-    double maxStepOpticalDepth = 1.0;
     uint32_t octaves = 3;            ///< multiple-scattering octaves (Wrenninge 2013)
     double extinctionPerM = 0.045;   ///< cloud extinction at density 1 (1/m); ~20 m mean free path
     double detailErosion = 0.35;     ///< strength of the detail-noise erosion
@@ -68,24 +52,11 @@ struct QualitySettings
     double windowHalfExtentM = 800000.0; ///< weather window half width (covers the horizon at 12 km)
     double windowWarpRadiusM = 150000.0; ///< radial warp r0: ~1 km texels at the eye, ~40 km at the edge
     double maxDistanceM = 700000.0;      ///< no cloud marched beyond this distance
-    uint32_t noiseSeed = 1;              ///< seed of every noise texture
+    uint32_t noiseSeed = 1;              ///< seed of every noise texture, made when the renderer starts
     bool detail = true;                  ///< detail erosion on
-    /// Reprojected frames march one pixel of every NxN block with the eye inside an overcast cloud layer
-    /// (between its base and top, coverage >= 0.8 around it: fog; reprojection.h kOvercastCoverage): 2 (a
-    /// quarter of the pixels, 4x those of the usual 4x4 block), or 1 (every pixel: the frame equals a full
-    /// render). In a broken or scattered layer it is always 1. In fog a pixel's radiance comes from the
-    /// first ~100 m of cloud, which moves little per frame: turning at 60 deg/s at 250 m/s inside an
-    /// overcast deck (tests/gpu/test_flight_path.cpp) block 2 keeps the display image 50+ dB of the
-    /// full render, and the inside-cloud frame costs a fraction of block 1's (BENCHMARKS.md).
-    uint32_t insideCloudBlockPx = 2;
     bool highCloud = true;               ///< cirrus layer on
     uint32_t accumulationFrames = 1;     ///< frames averaged, each with new march jitter and sub-pixel offset
     uint32_t shadowSteps = 48;           ///< density samples per shadow-map texel along the light ray
-    bool readback = true;                ///< copy the images to RenderResult; false leaves them empty (sky-bench)
-    /// Render the linear frame (RenderResult::linearRgbaHalf: EXR files, statistics). Without it the
-    /// composite writes only the display image and the renderer holds no linear image (16.6 MB at
-    /// 1080p); the service and sky-bench turn it off unless a caller reads it.
-    bool linearOutput = true;
     /// Temporal reprojection (skyservice/render/reprojection.h): march one pixel of every 4x4 block and
     /// reproject the rest from the renderer's previous reprojected frame. accumulationFrames is ignored.
     bool reprojected = false;
@@ -143,9 +114,16 @@ struct ViewRequest
     bool shadowMap = false;          ///< also render the cloud shadow map (skyservice/render/shadow_map.h)
     uint32_t shadowMapSize = 1024;   ///< shadow map texels per side
     double shadowMapExtentM = 150000.0;  ///< edge length of the shadow map's square on the ground (m)
-    /// What to copy back (ReadbackBits); the linear frame follows QualitySettings::linearOutput and
-    /// QualitySettings::readback = false copies nothing.
+    /// What to copy back (ReadbackBits); the linear frame follows linearOutput, and copyToHost = false
+    /// copies nothing.
     uint32_t readback = kReadEverything;
+    /// Copy the images `readback` asks for to RenderResult; false leaves them empty (sky-bench's timed
+    /// frames), the layers of kDraw* bits are drawn all the same.
+    bool copyToHost = true;
+    /// Render the linear frame (RenderResult::linearRgbaHalf: EXR files, statistics). Without it the
+    /// composite writes only the display image and the renderer holds no linear image (16.6 MB at
+    /// 1080p); the service and sky-bench turn it off unless a caller reads it.
+    bool linearOutput = true;
 };
 
 /// Where a shadow map lies on the earth, typed (RenderResult::shadowMap has the same as JSON with prose):
@@ -169,7 +147,7 @@ struct RenderResult
     /// marched this frame come from the history (shaders/lib/cloud_history.glsl): radiance to 2^-9 of
     /// the brightest channel, alpha to 1/131070, depth to 1.2e-4 relative.
     std::vector<float> cloudDepthM;
-    std::vector<uint16_t> linearRgbaHalf; ///< final linear radiance (sky + clouds), half floats; empty without QualitySettings::linearOutput
+    std::vector<uint16_t> linearRgbaHalf; ///< final linear radiance (sky + clouds), half floats; empty without ViewRequest::linearOutput
     std::vector<uint8_t> displayRgba8;    ///< tone-mapped sRGB
     /// Compositing layers (kReadSky, kReadCloudLayer), half floats, pre-exposed like linearRgbaHalf: the sky
     /// without clouds, and the clouds as seen through the air in front of them, premultiplied, so that

@@ -9,6 +9,7 @@
 #include "skyservice/render/frame_setup.h"
 #include "skyservice/render/shadow_map.h"
 #include "skyservice/render/view_frustum.h"
+#include "skyservice/render/view_validation.h"
 #include "skyservice/render/window_upload.h"
 
 #include <algorithm>
@@ -21,26 +22,6 @@ namespace sky
 {
 namespace
 {
-
-SkyStatus checkRequest(const ViewRequest& req)
-{
-    std::string error;
-    if (!validateEyePose(req.pose, error))
-        return SkyStatus::failure(error, VK_ERROR_INITIALIZATION_FAILED);
-    if (req.width < 8 || req.height < 8 || req.width > 8192 || req.height > 8192)
-        return SkyStatus::failure("image size " + std::to_string(req.width) + "x" + std::to_string(req.height) +
-                                      " outside 8..8192",
-                                  VK_ERROR_INITIALIZATION_FAILED);
-    if (req.frustum.asymmetric)
-    {
-        if (!validateFrustum(req.frustum, error))
-            return SkyStatus::failure(error, VK_ERROR_INITIALIZATION_FAILED);
-    }
-    else if (!(req.fovYDeg > 1.0 && req.fovYDeg < 170.0))
-        return SkyStatus::failure("vertical field of view " + std::to_string(req.fovYDeg) + " outside (1, 170) degrees",
-                                  VK_ERROR_INITIALIZATION_FAILED);
-    return SkyStatus::success();
-}
 
 void accumulate(const std::vector<uint16_t>& halves, std::vector<double>& sum)
 {
@@ -74,7 +55,6 @@ struct PreparedView
 
 SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySettings& quality, PreparedView& v)
 {
-    SKY_TRY(checkRequest(request));
     std::string error;
     if (!validateNoisePeriods(quality, error) || !validateShadowMapRequest(request, quality, error))
         return SkyStatus::failure(error, VK_ERROR_INITIALIZATION_FAILED);
@@ -84,10 +64,10 @@ SkyStatus prepareView(Renderer& r, const ViewRequest& request, const QualitySett
     const WeatherWindow& window = r.weather.window->window;
     const EyeOnWindow eyeOnWindow =
         placeEyeOnWindow(window.centreLatDeg, window.centreLonDeg, v.camera.eye.latDeg, v.camera.eye.lonDeg);
-    const FrameOutputs outputs = FrameOutputs::of(request, quality);
+    const FrameOutputs outputs = FrameOutputs::of(request);
     if (quality.reprojected)
         r.reconstruct.reprojection.block =
-            chooseMarchBlock(window, v.camera.eye.altitudeM, eyeOnWindow.offsetM, quality.insideCloudBlockPx);
+            chooseMarchBlock(window, v.camera.eye.altitudeM, eyeOnWindow.offsetM, r.tuning.insideCloudBlockPx);
     SKY_TRY(prepareFrameImages(r, request, quality, outputs));
 
     FrameInputs& in = v.in;
@@ -149,20 +129,21 @@ SkyStatus submitPrepared(Renderer& r, PreparedView& v, const ViewRequest& reques
     r.currentFrame = (r.currentFrame + 1) % kFramesInFlight;
     FrameContext& frame = recording(r);
     const bool shadow = request.shadowMap && k + 1 == frames;  // once, after the last accumulated frame
-    ViewRequest recorded = request;
-    recorded.shadowMap = shadow;
-    SkyStatus status = beginFrameCommands(r.ctx, r.memory, frame, frameReadbackBytes(r, recorded, quality));
+    // The ticket keeps the frame's one copy of the request (the caller's may be gone before finishView),
+    // as this frame records it: with the shadow map only on the last accumulated frame.
+    ticket = FrameTicket{};
+    ticket.request = request;
+    ticket.request.shadowMap = shadow;
+    SkyStatus status = beginFrameCommands(r.ctx, r.memory, frame, frameReadbackBytes(r, ticket.request));
     if (!status.ok())
         return status;
     std::memcpy(frame.frameUniforms.mapped, &v.params, sizeof v.params);
 
-    ticket = FrameTicket{};
     ticket.context = r.currentFrame;
-    ticket.request = request;
     ticket.reprojected = quality.reprojected;
     ticket.lightVolume = v.params.lightVolume.nearCascade.texelM > 0.0f;
     if (shadow)
-        ticket.shadow.transmittance = reserveShadowMapReadback(r.shadowPass, frame, quality);  // first: a fixed offset
+        ticket.shadow.transmittance = reserveShadowMapReadback(r.shadowPass, frame, request);  // first: a fixed offset
     recordFrame(r, frame, request, v.camera, v.sunMoon, v.in, v.params, ticket.plan, ticket.facts);
     if (shadow)
         recordFrameShadowMap(r, frame, request, quality, v.camera, v.sunMoon, ticket.shadow, ticket.facts);
@@ -295,6 +276,9 @@ MappedFrame mappedFrame(const Renderer& r, const FrameTicket& ticket)
 
 SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySettings& quality, RenderResult& result)
 {
+    // The entry point of callers that draw directly; submitView's caller validated its views (view_validation.h).
+    if (std::string error; !validateView(request, error))
+        return SkyStatus::failure(error, VK_ERROR_INITIALIZATION_FAILED);
     const uint32_t frames = quality.reprojected ? 1u : std::max(1u, quality.accumulationFrames);
     FrameTicket ticket;
     if (frames == 1)

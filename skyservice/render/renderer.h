@@ -127,6 +127,8 @@ SkyStatus renderView(Renderer& r, const ViewRequest& request, const QualitySetti
 /// Prepares one frame on the CPU, records it and submits it, without waiting for the GPU: a caller can
 /// prepare the next frame while the GPU runs this one. At most kFramesInFlight tickets may be pending;
 /// collect them with finishView in the order they were submitted. One frame: accumulationFrames is ignored.
+/// `request` must have passed validateView (view_validation.h): the service checks each view where it
+/// enters and this does not check it again; renderView does, for callers that draw directly.
 SkyStatus submitView(Renderer& r, const ViewRequest& request, const QualitySettings& quality, FrameTicket& ticket);
 /// Waits for the ticket's frame and fills `result` (GPU times, facts, and with `copyPixels` the pixels asked
 /// for; without, the pixel vectors are left empty and mappedFrame gives them in place). `result`'s vectors

@@ -38,7 +38,7 @@ constexpr double kNearCloudM = 300.0;
 /// layer the eye flies between clouds whose edges are metres to a few km away (a quarter of the pixels
 /// per frame dithered them at 150 m/s in ./sky run's demo).
 /// Inside an overcast layer (coverage around the eye at least this) the view is fog a few tens of metres
-/// deep, whose radiance comes from the first ~100 m of cloud: there QualitySettings::insideCloudBlockPx
+/// deep, whose radiance comes from the first ~100 m of cloud: there RenderTuning::insideCloudBlockPx
 /// (2 by default, a quarter of the pixels) applies.
 constexpr float kOvercastCoverage = 0.8f;
 /// "Around the eye" is this far horizontally (m): the weather window's texels near the eye are ~1 km.

@@ -51,8 +51,6 @@ ShadowMapDrawing drawingFor(const ShadowMapInputs& in, const ViewRequest& reques
     d.sizeTexels = request.shadowMapSize;
     d.extentM = request.shadowMapExtentM;
     d.quality = quality;
-    d.quality.readback = false;
-    d.quality.linearOutput = false;
     d.tuning = in.tuning;
     d.weatherVersion = in.weatherVersion;
     d.window = in.window;
@@ -264,7 +262,7 @@ void recordShadowMap(const PassFrame& f, FrameContext& frame, ShadowMapPass& pas
         drawShadowMap(f, frame, pass, in, request, quality, camera, sunMoon, next);
         drawn = std::move(next);
     }
-    if (quality.readback)
+    if (request.copyToHost)
     {
         // A reused map is copied once into each frame context's buffer, not every frame (4 MiB at 1024²).
         readback.transmittance = reserved;
@@ -286,9 +284,9 @@ void recordShadowMap(const PassFrame& f, FrameContext& frame, ShadowMapPass& pas
     facts.shadowMapRedrawn = readback.redrawn;
 }
 
-ReadbackRegion reserveShadowMapReadback(const ShadowMapPass& pass, FrameContext& frame, const QualitySettings& quality)
+ReadbackRegion reserveShadowMapReadback(const ShadowMapPass& pass, FrameContext& frame, const ViewRequest& request)
 {
-    return quality.readback ? reserveImageReadback(frame, pass.transmittance) : ReadbackRegion{};
+    return request.copyToHost ? reserveImageReadback(frame, pass.transmittance) : ReadbackRegion{};
 }
 
 void collectShadowMap(const Context& ctx, const FrameContext& frame, const ShadowMapReadback& readback,

@@ -106,7 +106,7 @@ struct ShadowMapDrawing
     uint64_t id = 0;                  ///< counts drawings (RenderResult::shadowMapId)
     uint32_t sizeTexels = 0;
     double extentM = 0;
-    QualitySettings quality;          ///< with readback and linearOutput cleared (they change no texel)
+    QualitySettings quality;
     RenderTuning tuning;
     uint64_t weatherVersion = 0;
     const void* window = nullptr;     ///< the weather window drawn from (ShadowMapInputs::window)
@@ -159,7 +159,7 @@ struct ShadowMapInputs
 /// Room for the transmittance in the frame's readback buffer, reserved before any other readback of the
 /// frame (so it lies at the same offset every frame and a reused map need not be copied again); goes into
 /// recordShadowMap's `readback.transmittance`. Empty without readback.
-ReadbackRegion reserveShadowMapReadback(const ShadowMapPass& pass, FrameContext& frame, const QualitySettings& quality);
+ReadbackRegion reserveShadowMapReadback(const ShadowMapPass& pass, FrameContext& frame, const ViewRequest& request);
 
 /**
  * Record the shadow map of the frame into its command buffer, and the copies of its texels.

@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/service/control_loop.h"
 
-#include "skyservice/earth/geodesy.h"
-#include "skyservice/render/view_frustum.h"
+#include "skyservice/render/view_validation.h"
 #include "skyservice/service/log.h"
 #include "skyservice/service/weather_schedule.h"
 #include "skyservice/sky/ephemeris.h"
@@ -236,22 +235,18 @@ void ControlLoop::setView(ClientId client, const Request& request)
         v.frustum = Frustum{true, *u.left, *u.right, *u.up, *u.down};
     if (u.width) v.width = *u.width;
     if (u.height) v.height = *u.height;
-    std::string why;
-    // parseRequest checked each field's range; this is the renderer's own check of the whole pose.
-    if (!validateEyePose(v.pose, why))
-    {
-        sendError(client, request.id, "out_of_range", why, "view");
-        return;
-    }
-    if (!validateFrustum(v.frustum, why))
-    {
-        sendError(client, request.id, "out_of_range", why, "view");
-        return;
-    }
     if (v.width > c_.limits.maxWidth || v.height > c_.limits.maxHeight || v.width < 8 || v.height < 8)
     {
         sendError(client, request.id, "out_of_range", "image size outside the service's limits",
                   v.width > c_.limits.maxWidth || v.width < 8 ? "view.width" : "view.height");
+        return;
+    }
+    // parseRequest checked each field it got; this is the check of the whole view, the one the renderer
+    // relies on: frames draw s.view without checking it again (view_validation.h).
+    std::string why;
+    if (!validateView(v, why))
+    {
+        sendError(client, request.id, "out_of_range", why, "view");
         return;
     }
     s.view = v;

@@ -152,6 +152,12 @@ void Daemon::reload()
         SKY_LOG_WARN("SIGHUP: [cigi] changed: takes effect after a restart");
     fresh.cigi = config_.cigi;
     keep(fresh.filesRoot != config_.filesRoot, "files_root");
+    // The noise textures are made from the seed once, when the renderer starts: a new seed is refused (the
+    // running one stays, in the renderer and in the state's quality alike).
+    if (fresh.qualitySettings.noiseSeed != config_.qualitySettings.noiseSeed)
+        SKY_LOG_WARN("SIGHUP: noise.seed changed (%u -> %u): takes effect after a restart",
+                     config_.qualitySettings.noiseSeed, fresh.qualitySettings.noiseSeed);
+    fresh.qualitySettings.noiseSeed = config_.qualitySettings.noiseSeed;
     fresh.socketPath = config_.socketPath;
     fresh.socketMode = config_.socketMode;
     fresh.shmName = config_.shmName;

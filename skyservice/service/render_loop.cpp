@@ -64,9 +64,8 @@ std::string failedLine(const nlohmann::json& id, const std::string& message)
 /// A frame submitted to the GPU and not yet published.
 struct InFlightFrame
 {
-    FrameTicket ticket;
+    FrameTicket ticket;  ///< holds the frame's request (ticket.request)
     uint64_t id = 0;
-    ViewRequest request;
     double simTimeS = 0;
     SteadyClock::time_point start;
     DrawnWeather drawn;        ///< the weather this frame drew (the schedule may move on before it is published)
@@ -94,7 +93,7 @@ struct RenderLoop::Impl
     std::vector<RenderJob> pendingWriteFiles;
 
     void run();
-    void startFrame(uint64_t id, ViewRequest request, const SimClock& clock, double simTimeS,
+    void startFrame(uint64_t id, ViewRequest& request, const SimClock& clock, double simTimeS,
                     const WeatherState& weather, const QualitySettings& quality,
                     std::vector<FilesSubscription> files, uint32_t layers, uint32_t exportLayers);
     void completeFrame(InFlightFrame& frame);
@@ -198,7 +197,7 @@ void RenderLoop::Impl::run()
             continue;
         }
         uint64_t id = ++s.framesStarted;
-        ViewRequest request = s.view;
+        ViewRequest request = s.view;  // the frame's view, taken under the lock; startFrame completes it
         SteadyClock::time_point now = SteadyClock::now();
         SimClock clock = s.clock;
         double simTimeS = clock.nowUnixS(now);
@@ -230,7 +229,7 @@ void RenderLoop::Impl::run()
     }
 }
 
-void RenderLoop::Impl::startFrame(uint64_t id, ViewRequest request, const SimClock& clock, double simTimeS,
+void RenderLoop::Impl::startFrame(uint64_t id, ViewRequest& request, const SimClock& clock, double simTimeS,
                                   const WeatherState& weather, const QualitySettings& quality,
                                   std::vector<FilesSubscription> files, uint32_t layers, uint32_t exportLayers)
 {
@@ -248,8 +247,7 @@ void RenderLoop::Impl::startFrame(uint64_t id, ViewRequest request, const SimClo
                                          [id](const FilesSubscription& f) { return id % f.every == 0; });
     const bool exr = !pendingWriteFiles.empty() ||
                      std::any_of(files.begin(), files.end(), [](const FilesSubscription& f) { return f.format != "png"; });
-    QualitySettings frameQuality = quality;
-    frameQuality.linearOutput = writesFiles && exr;
+    request.linearOutput = writesFiles && exr;
     request.readback = (layers & (1u << SKY_LAYER_DISPLAY)) ? kReadDisplay : 0u;
     if (layers & (1u << SKY_LAYER_SKY))
         request.readback |= kReadSky;
@@ -267,13 +265,12 @@ void RenderLoop::Impl::startFrame(uint64_t id, ViewRequest request, const SimClo
         request.readback |= kDrawDepthLayer;
     if (writesFiles)
         request.readback |= kReadEverything;
-    frame.request = request;
     frame.simTimeS = simTimeS;
     frame.layers = layers;
     frame.exportLayers = exportLayers;
     frame.copyPixels = writesFiles;
     frame.files = std::move(files);
-    SkyStatus status = submitView(r, request, frameQuality, frame.ticket);
+    SkyStatus status = submitView(r, request, quality, frame.ticket);
     weatherSchedule.afterFrame(r);
     frame.drawn = weatherSchedule.drawn();
     if (!status.ok())
@@ -297,9 +294,9 @@ void RenderLoop::Impl::completeFrame(InFlightFrame& frame)
     {
         haveFrame = true;
         resultHasPixels = frame.copyPixels;
-        lastRequest = frame.request;
+        lastRequest = frame.ticket.request;
         lastDrawn = frame.drawn;
-        const ViewRequest& request = frame.request;
+        const ViewRequest& request = frame.ticket.request;
         const MappedFrame pixels = mappedFrame(r, frame.ticket);
         ShmFrame f;
         f.frameId = frame.id;

@@ -3,6 +3,7 @@
 
 #include "skyservice/app/commands.h"
 #include "skyservice/app/toml_file.h"
+#include "skyservice/render/view_validation.h"
 #include "skyservice/service/files_root.h"
 #include "skyservice/sky/ephemeris.h"
 
@@ -321,7 +322,11 @@ bool loadServiceConfig(const std::string& path, ServiceConfig& out, std::string&
                 std::string field;
                 if (!value.is_table())
                     why = "must be a section [service.view]", field = "service.view";
-                else if (readView(*value.as_table(), c.view, field, why))
+                else if (!readView(*value.as_table(), c.view, field, why))
+                    ;  // `field` and `why` name the key at fault
+                else if (!validateView(c.view, why))  // the view as a whole: the renderer takes it unchecked
+                    field = "service.view";
+                else
                     continue;
                 error = path + ": '" + field + "' " + why;
                 return false;

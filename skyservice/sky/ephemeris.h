@@ -10,6 +10,8 @@
 // total solar eclipses (tests/unit/test_ephemeris.cpp); valid for years 1900-2100.
 #pragma once
 
+#include "weather_ingest/civil_time.h"  // the times it takes: Unix seconds, ISO 8601
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -95,19 +97,5 @@ double deltaTSeconds(double decimalYear);
  **********************************************************************/
 double refractionDeg(double elevationDeg, const RefractionConditions& air);
 
-/**
- * Parses an ISO 8601 UTC time: "2026-06-21T12:00:00Z", with optional fractional seconds
- * ("12:00:00.250Z", truncated to whole seconds) and a "Z" or numeric offset ("+00:00", "-07:00").
- *
- * @param[in] text the time.
- * @param[out] unixTimeS the time in Unix seconds (UTC), set only on success.
- * @param[out] error on failure, a message naming what is wrong.
- * @return false for anything else: no time zone (local time is ambiguous), basic format, a date that
- *   does not exist, a leap second (":60", Unix time cannot hold it), years outside 1900-2100.
- **********************************************************************/
-bool parseIso8601Utc(const std::string& text, int64_t& unixTimeS, std::string& error);
-
-/// Formats a Unix time as "YYYY-MM-DDThh:mm:ssZ".
-std::string formatIso8601Utc(int64_t unixTimeS);
 
 }  // namespace sky

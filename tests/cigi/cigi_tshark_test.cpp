@@ -2,11 +2,13 @@
 // Wireshark's CIGI dissector reads what this code writes: datagrams are wrapped in UDP (text2pcap, ports
 // 8004/8005), decoded with `tshark -d udp.port==8004,cigi -T fields`, and every field is compared with the
 // value encoded. IG -> host (Start of Frame, Weather Conditions and Aerosol Concentration Responses, from the
-// IgEncoder) and host -> IG (every packet the IG reads), in both byte orders. Skipped, saying so, when tshark
+// IgEncoder) and host -> IG (every packet the IG reads), in both byte orders. The fields compared are those of
+// the packets' field tables (cigi_fields.h) that the dissector names. Skipped, saying so, when tshark
 // or text2pcap (Debian packages tshark, wireshark-common) are not installed.
 #include "cigi_samples.h"
 
 #include "skyservice/cigi/cigi_encoder.h"
+#include "skyservice/cigi/cigi_fields.h"
 
 #include <gtest/gtest.h>
 
@@ -118,32 +120,24 @@ void expectFields(const std::vector<std::string>& row, const FieldTable& fields,
     }
 }
 
+// Each field of the packet's table (cigi_fields.h) that the dissector shows, with the value `p` holds.
+template <typename Packet>
+void appendFields(FieldTable& table, const Packet& p)
+{
+    forEachField<Packet>([&](const auto& f) {
+        if (f.dissector != nullptr)
+            table.emplace_back(f.dissector, static_cast<double>(p.*f.member));
+    });
+}
+
 FieldTable igToHostFields(const StartOfFrame& s, const WeatherConditionsResponse& w,
                           const AerosolConcentrationResponse& a)
 {
-    return {
-        {"cigi.version", s.majorVersion},
-        {"cigi.sof.minor_version", s.minorVersion},
-        {"cigi.sof.db_number", s.databaseNumber},
-        {"cigi.sof.ig_status", s.igStatus},
-        {"cigi.sof.ig_mode", s.igMode},
-        {"cigi.sof.timestamp_valid", s.timestampValid},
-        {"cigi.sof.earth_reference_model", s.earthReferenceModelCustom},
-        {"cigi.sof.ig_frame_number", s.igFrameNumber},
-        {"cigi.sof.timestamp", s.timestamp10us},
-        {"cigi.sof.last_host_frame_number", s.lastHostFrameNumber},
-        {"cigi.wea_cond_response.request_id", w.requestId},
-        {"cigi.wea_cond_response.humidity", w.humidityPct},
-        {"cigi.wea_cond_response.air_temp", w.airTemperatureC},
-        {"cigi.wea_cond_response.visibility_range", w.visibilityM},
-        {"cigi.wea_cond_response.horiz_speed", w.horizontalWindMps},
-        {"cigi.wea_cond_response.vert_speed", w.verticalWindMps},
-        {"cigi.wea_cond_response.wind_direction", w.windDirectionDeg},
-        {"cigi.wea_cond_response.barometric_pressure", w.pressureHpa},
-        {"cigi.aerosol_concentration_response.request_id", a.requestId},
-        {"cigi.aerosol_concentration_response.layer_id", a.layerId},
-        {"cigi.aerosol_concentration_response.aerosol_concentration", a.aerosolGPerM3},
-    };
+    FieldTable table;
+    appendFields(table, s);
+    appendFields(table, w);
+    appendFields(table, a);
+    return table;
 }
 
 TEST(CigiTshark, EncoderOutputReadsBackInWiresharksDissector)
@@ -182,134 +176,17 @@ TEST(CigiTshark, EncoderOutputReadsBackInWiresharksDissector)
 
 FieldTable hostToIgFields()
 {
-    const IgControl ig = sampleIgControl();
-    const EntityControl e = sampleEntityControl();
-    const CelestialSphereControl c = sampleCelestialSphereControl();
-    const AtmosphereControl a = sampleAtmosphereControl();
-    const EnvironmentalRegionControl r = sampleEnvironmentalRegionControl();
-    const WeatherControl w = sampleWeatherControl();
-    const ViewControl vc = sampleViewControl();
-    const ViewDefinition vd = sampleViewDefinition();
-    const EnvironmentalConditionsRequest q = sampleEnvironmentalConditionsRequest();
-    return {
-        {"cigi.ig_control.db_number", ig.databaseNumber},
-        {"cigi.ig_control.ig_mode", ig.igMode},
-        {"cigi.ig_control.timestamp_valid", ig.timestampValid},
-        {"cigi.ig_control.extrapolation_enable", ig.extrapolationEnable},
-        {"cigi.ig_control.minor_version", ig.minorVersion},
-        {"cigi.ig_control.host_frame_number", ig.hostFrameNumber},
-        {"cigi.ig_control.timestamp", ig.timestamp10us},
-        {"cigi.ig_control.last_ig_frame_number", ig.lastIgFrameNumber},
-        {"cigi.entity_control.entity_id", e.entityId},
-        {"cigi.entity_control.entity_state", e.entityState},
-        {"cigi.entity_control.attach_state", e.attached},
-        {"cigi.entity_control.inherit_alpha", e.inheritAlpha},
-        {"cigi.entity_control.ground_ocean_clamp", e.groundOceanClamp},
-        {"cigi.entity_control.animation_dir", e.animationBackward},
-        {"cigi.entity_control.animation_loop_mode", e.animationContinuous},
-        {"cigi.entity_control.animation_state", e.animationState},
-        {"cigi.entity_control.extrapolation_enable", e.extrapolationEnable},
-        {"cigi.entity_control.alpha", e.alpha},
-        {"cigi.entity_control.entity_type", e.entityType},
-        {"cigi.entity_control.parent_id", e.parentId},
-        {"cigi.entity_control.roll", e.rollDeg},
-        {"cigi.entity_control.pitch", e.pitchDeg},
-        {"cigi.entity_control.yaw", e.yawDeg},
-        {"cigi.entity_control.lat_xoff", e.latDegOrXM},
-        {"cigi.entity_control.lon_yoff", e.lonDegOrYM},
-        {"cigi.entity_control.alt_zoff", e.altMslMOrZM},
-        {"cigi.celestial_sphere_control.hour", c.hour},
-        {"cigi.celestial_sphere_control.minute", c.minute},
-        {"cigi.celestial_sphere_control.ephemeris_enable", c.ephemerisEnable},
-        {"cigi.celestial_sphere_control.sun_enable", c.sunEnable},
-        {"cigi.celestial_sphere_control.moon_enable", c.moonEnable},
-        {"cigi.celestial_sphere_control.star_enable", c.starFieldEnable},
-        {"cigi.celestial_sphere_control.date_time_valid", c.dateTimeValid},
-        {"cigi.celestial_sphere_control.date", c.dateMMDDYYYY},
-        {"cigi.celestial_sphere_control.star_intensity", c.starFieldIntensityPct},
-        {"cigi.atmosphere_control.atmospheric_model_enable", a.atmosphericModelEnable},
-        {"cigi.atmosphere_control.humidity", a.humidityPct},
-        {"cigi.atmosphere_control.air_temp", a.airTemperatureC},
-        {"cigi.atmosphere_control.visibility_range", a.visibilityM},
-        {"cigi.atmosphere_control.horiz_wind", a.horizontalWindMps},
-        {"cigi.atmosphere_control.vert_wind", a.verticalWindMps},
-        {"cigi.atmosphere_control.wind_direction", a.windDirectionDeg},
-        {"cigi.atmosphere_control.barometric_pressure", a.pressureHpa},
-        {"cigi.env_region_control.region_id", r.regionId},
-        {"cigi.env_region_control.region_state", r.regionState},
-        {"cigi.env_region_control.merge_weather", r.mergeWeather},
-        {"cigi.env_region_control.merge_aerosol", r.mergeAerosol},
-        {"cigi.env_region_control.merge_maritime", r.mergeMaritime},
-        {"cigi.env_region_control.merge_terrestrial", r.mergeTerrestrial},
-        {"cigi.env_region_control.lat", r.latDeg},
-        {"cigi.env_region_control.lon", r.lonDeg},
-        {"cigi.env_region_control.size_x", r.sizeXM},
-        {"cigi.env_region_control.size_y", r.sizeYM},
-        {"cigi.env_region_control.corner_radius", r.cornerRadiusM},
-        {"cigi.env_region_control.rotation", r.rotationDeg},
-        {"cigi.env_region_control.transition_perimeter", r.transitionPerimeterM},
-        {"cigi.weather_control.entity_region_id", w.entityOrRegionId},
-        {"cigi.weather_control.layer_id", w.layerId},
-        {"cigi.weather_control.humidity", w.humidityPct},
-        {"cigi.weather_control.weather_enable", w.weatherEnable},
-        {"cigi.weather_control.scud_enable", w.scudEnable},
-        {"cigi.weather_control.random_winds_enable", w.randomWindsEnable},
-        {"cigi.weather_control.random_lightning_enable", w.randomLightningEnable},
-        {"cigi.weather_control.cloud_type", w.cloudType},
-        {"cigi.weather_control.scope", w.scope},
-        {"cigi.weather_control.severity", w.severity},
-        {"cigi.weather_control.air_temp", w.airTemperatureC},
-        {"cigi.weather_control.visibility_range", w.visibilityM},
-        {"cigi.weather_control.scud_frequency", w.scudFrequencyPct},
-        {"cigi.weather_control.coverage", w.coveragePct},
-        {"cigi.weather_control.base_elevation", w.baseElevationM},
-        {"cigi.weather_control.thickness", w.thicknessM},
-        {"cigi.weather_control.transition_band", w.transitionBandM},
-        {"cigi.weather_control.horiz_wind", w.horizontalWindMps},
-        {"cigi.weather_control.vert_wind", w.verticalWindMps},
-        {"cigi.weather_control.wind_direction", w.windDirectionDeg},
-        {"cigi.weather_control.barometric_pressure", w.pressureHpa},
-        {"cigi.weather_control.aerosol_concentration", w.aerosolGPerM3},
-        {"cigi.view_control.view_id", vc.viewId},
-        {"cigi.view_control.group_id", vc.groupId},
-        {"cigi.view_control.xoff_enable", vc.xOffsetEnable},
-        {"cigi.view_control.yoff_enable", vc.yOffsetEnable},
-        {"cigi.view_control.zoff_enable", vc.zOffsetEnable},
-        {"cigi.view_control.roll_enable", vc.rollEnable},
-        {"cigi.view_control.pitch_enable", vc.pitchEnable},
-        {"cigi.view_control.yaw_enable", vc.yawEnable},
-        {"cigi.view_control.entity_id", vc.entityId},
-        {"cigi.view_control.xoff", vc.xOffsetM},
-        {"cigi.view_control.yoff", vc.yOffsetM},
-        {"cigi.view_control.zoff", vc.zOffsetM},
-        {"cigi.view_control.roll", vc.rollDeg},
-        {"cigi.view_control.pitch", vc.pitchDeg},
-        {"cigi.view_control.yaw", vc.yawDeg},
-        {"cigi.view_def.view_id", vd.viewId},
-        {"cigi.view_def.group_id", vd.groupId},
-        {"cigi.view_def.near_enable", vd.nearEnable},
-        {"cigi.view_def.far_enable", vd.farEnable},
-        {"cigi.view_def.left_enable", vd.leftEnable},
-        {"cigi.view_def.right_enable", vd.rightEnable},
-        {"cigi.view_def.top_enable", vd.topEnable},
-        {"cigi.view_def.bottom_enable", vd.bottomEnable},
-        {"cigi.view_def.mirror_mode", vd.mirrorMode},
-        {"cigi.view_def.pixel_replication", vd.pixelReplication},
-        {"cigi.view_def.projection_type", vd.orthographic},
-        {"cigi.view_def.reorder", vd.reorder},
-        {"cigi.view_def.view_type", vd.viewType},
-        {"cigi.view_def.near", vd.nearM},
-        {"cigi.view_def.far", vd.farM},
-        {"cigi.view_def.left", vd.leftDeg},
-        {"cigi.view_def.right", vd.rightDeg},
-        {"cigi.view_def.top", vd.topDeg},
-        {"cigi.view_def.bottom", vd.bottomDeg},
-        {"cigi.env_cond_request.type", q.requestType},
-        {"cigi.env_cond_request.id", q.requestId},
-        {"cigi.env_cond_request.lat", q.latDeg},
-        {"cigi.env_cond_request.lon", q.lonDeg},
-        {"cigi.env_cond_request.alt", q.altMslM},
-    };
+    FieldTable table;
+    appendFields(table, sampleIgControl());
+    appendFields(table, sampleEntityControl());
+    appendFields(table, sampleCelestialSphereControl());
+    appendFields(table, sampleAtmosphereControl());
+    appendFields(table, sampleEnvironmentalRegionControl());
+    appendFields(table, sampleWeatherControl());
+    appendFields(table, sampleViewControl());
+    appendFields(table, sampleViewDefinition());
+    appendFields(table, sampleEnvironmentalConditionsRequest());
+    return table;
 }
 
 TEST(CigiTshark, HostPacketLayoutsAgreeWithWiresharksDissector)

@@ -73,7 +73,7 @@ TEST_F(ConeTail, LitSamplesNearerThanTheLimitMarchTheirOwnCones)
     EXPECT_EQ(limited.marchRowLookups, marched.marchRowLookups);
 }
 
-// Lit samples behind a view transmittance below 0.2 (QualitySettings::detailMinTransmittance) take the
+// Lit samples behind a view transmittance below 0.2 (RenderTuning::detailMinTransmittance) take the
 // light of the last cone marched: fewer lookups in a thick deck, and what they add reaches the eye through
 // less than a fifth. Measured 41.6 dB and 7.6 % fewer lookups (50.8 dB and 5.6 % with the threshold at 0.1).
 TEST_F(ConeTail, DeepLitSamplesTakeTheLastConesLight)

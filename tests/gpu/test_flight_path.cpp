@@ -99,7 +99,7 @@ TEST_F(FlightPath, TurnAt90DegreesPerSecondKeepsHistory)
 // that come in at the bottom are marched in full (reprojection.h NewLines), so the bottom band keeps the
 // detail of the full render instead of the fill interpolated from one pixel in 16. Measured over the 12
 // frames: band cloud PSNR >= 31.1 dB, mean abs <= 0.0088 of the peak (31.9 dB and 0.0071 with deep samples
-// from a view transmittance of 0.1 instead of 0.2: render_types.h detailMinTransmittance; the deck's
+// from a view transmittance of 0.1 instead of 0.2: render_tuning.h detailMinTransmittance; the deck's
 // deep parts are sampled more coarsely); with the rows left to the fill 28.1 dB and 0.0125. (The band's
 // sharpness, 0.64-1.07 of the full render's, is too noisy at 8 rows of 128 pixels to gate.)
 TEST_F(FlightPath, PitchDownAt60DegreesPerSecond)
@@ -173,7 +173,7 @@ TEST_F(FlightPath, ClimbOutOfTheDeckReturnsToOneSixteenth)
 }
 
 // Inside an overcast deck (coverage 0.9: fog all around, reprojection.h kOvercastCoverage), turning at
-// 60 deg/s at 250 m/s with a quarter of the pixels marched per frame (QualitySettings::insideCloudBlockPx
+// 60 deg/s at 250 m/s with a quarter of the pixels marched per frame (RenderTuning::insideCloudBlockPx
 // 2): the gates of the flights above the deck hold, and by far (measured: display 50+ dB).
 TEST_F(FlightPath, TurnInsideAnOvercastDeckAt60DegreesPerSecond)
 {

@@ -136,8 +136,8 @@ TEST_F(FramePath, ReadsBackOnlyWhatWasAskedFor)
     setWeather(own, reprojectionWeather());
     ViewRequest view = reprojectionView();
     view.readback = kReadDisplay;
+    view.linearOutput = false;
     QualitySettings quality = reprojectedQuality();
-    quality.linearOutput = false;
     RenderResult r;
     ASSERT_TRUE(renderView(own, view, quality, r).ok());
     EXPECT_EQ(r.displayRgba8.size(), size_t(view.width) * view.height * 4);

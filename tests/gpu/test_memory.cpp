@@ -54,7 +54,7 @@ TEST_F(Memory, LinearFrameOnlyWhileFramesAskForIt)
         EXPECT_GE(linearBytes, uint64_t(v.width) * v.height * 8) << "RGBA16F";
         EXPECT_EQ(with.linearRgbaHalf.size(), size_t(v.width) * v.height * 4);
 
-        q.linearOutput = false;
+        v.linearOutput = false;
         dropHistory(*renderer);
         renderer->reconstruct.reprojection.frameIndex = index;
         RenderResult without = renderOk(v, q);
@@ -66,14 +66,14 @@ TEST_F(Memory, LinearFrameOnlyWhileFramesAskForIt)
         EXPECT_EQ(without.cloudRgbaHalf, with.cloudRgbaHalf);
         EXPECT_EQ(without.cloudDepthM, with.cloudDepthM);
 
-        q.linearOutput = true;  // asked for again: made again
+        v.linearOutput = true;  // asked for again: made again
         RenderResult again = renderOk(v, q);
         EXPECT_EQ(liveBytes("linear frame"), linearBytes);
         EXPECT_EQ(again.linearRgbaHalf.size(), with.linearRgbaHalf.size());
     }
 }
 
-// Inside a stratus deck with every pixel marched there (block 1, insideCloudBlockPx 1): the fresh images
+// Inside a stratus deck with every pixel marched there (block 1, RenderTuning::insideCloudBlockPx 1): the fresh images
 // are full size. 1000 m above
 // its top (beyond the 300 m near zone, within the 5 km history limit) the block is 4 again: they
 // shrink back to one pixel per 4x4 block, and the history survives.
@@ -84,8 +84,12 @@ TEST_F(Memory, FreshImagesShrinkWhenTheEyeLeavesTheCloudAndHistoryStays)
     v.width = 64;
     v.height = 36;
     QualitySettings q = reprojectedQuality();
-    q.linearOutput = false;
-    q.insideCloudBlockPx = 1;
+    v.linearOutput = false;
+    renderer->tuning.insideCloudBlockPx = 1;
+    const struct DefaultTuningAfter  // for the suite's next tests, however this one ends
+    {
+        ~DefaultTuningAfter() { renderer->tuning = RenderTuning{}; }
+    } restore;
     RenderResult inside = renderOk(v, q);
     ASSERT_EQ(inside.marchBlockPx, 1u) << inside.marchBlockReason;
     EXPECT_EQ(renderer->march.freshCloudImage.extent.width, v.width);
@@ -125,15 +129,15 @@ TEST(MemoryBudget, At1080pEachModeStaysWithin64MB)
         v.width = 1920;
         v.height = 1080;
         QualitySettings q = reprojected ? reprojectedQuality() : testQuality();
-        q.linearOutput = false;
-        q.readback = false;
+        v.linearOutput = false;
+        v.copyToHost = false;
         RenderResult result;
         for (int k = 0; k < 2; ++k)
             ASSERT_TRUE(renderView(r, v, q, result).ok());
         const uint64_t total = r.memory.totalBytes;
         // What the service renders for a display subscriber: the display read back into host-cached memory
         // (system RAM, counted apart), no device memory added.
-        q.readback = true;
+        v.copyToHost = true;
         v.readback = kReadDisplay;
         ASSERT_TRUE(renderView(r, v, q, result).ok());
         ASSERT_TRUE(renderView(r, v, q, result).ok());
@@ -142,8 +146,8 @@ TEST(MemoryBudget, At1080pEachModeStaysWithin64MB)
         std::printf("1920x1080 %s, display read back: %.2f MB device, %.2f MB host readback\n",
                     reprojected ? "reprojected" : "full", double(r.memory.totalBytes) * 1e-6,
                     double(r.memory.hostReadbackBytes) * 1e-6);
-        q.readback = false;
-        q.linearOutput = true;
+        v.copyToHost = false;
+        v.linearOutput = true;
         ASSERT_TRUE(renderView(r, v, q, result).ok());
         std::printf("1920x1080 %s: %.2f MB (%.2f MiB) without the linear frame, %.2f MB with it\n",
                     reprojected ? "reprojected" : "full", double(total) * 1e-6, double(total) / 1048576.0,

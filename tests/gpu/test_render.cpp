@@ -168,17 +168,19 @@ TEST_F(GpuRender, SunSideOfACumulusIsBrighterThanItsShadowSide)
         << "lit " << a.meanOpaqueLuminance << " shadow " << b.meanOpaqueLuminance;
 }
 
-// Deep in a cloud (view transmittance below QualitySettings::detailMinTransmittance, 0.2) the view
+// Deep in a cloud (view transmittance below RenderTuning::detailMinTransmittance, 0.2) the view
 // samples skip the detail erosion: a deck seen from above stays within 38 dB of the render that erodes
 // every sample (measured 39.2 dB; 47.5 at 0.1, the default before the current cloud shapes made eroded samples
-// dearer: render_types.h), and differs from it (the rule is in use).
+// dearer: render_tuning.h), and differs from it (the rule is in use).
 TEST_F(GpuRender, DeepSamplesWithoutDetailChangeLittle)
 {
     WeatherSnapshot w = deckBelowWeather();
     ViewRequest v = deckFromAboveView();
-    QualitySettings everySample = testQuality();
+    RenderTuning everySample;
     everySample.detailMinTransmittance = 0.0;
-    RenderResult eroded = render(w, v, everySample);
+    renderer->tuning = everySample;
+    RenderResult eroded = render(w, v);
+    renderer->tuning = RenderTuning{};
     RenderResult shipped = render(w, v);
     ASSERT_GT(cloudStats(eroded).opaquePixels, 2000u);
     EXPECT_NE(shipped.cloudRgbaHalf, eroded.cloudRgbaHalf);
@@ -187,27 +189,35 @@ TEST_F(GpuRender, DeepSamplesWithoutDetailChangeLittle)
     EXPECT_GE(psnr, 38.0);
 }
 
-// The march's steps inside a cloud (QualitySettings::maxStepOpticalDepth 1: at most one optical depth)
+// The march's steps inside a cloud (RenderTuning::maxStepOpticalDepth 1: at most one optical depth)
 // against steps of 0.2 with 4x the step budget, close to the converged integral: a deck from above and
 // a sunlit cumulus cell from the side. Measured 31.9 and 37.9 dB (cloud radiance); 36.0 and 42.2 before the
 // light was matched to the path-traced reference (cloud_lighting.glsl): its diffuse octave remainder keeps
 // light deep inside the clouds, which the coarser steps integrate less exactly than the skin alone (peak
 // radiance 1.7 in the deck, so not just a brighter image). The limit at 1 without its floors for thin skin
-// (render_types.h) gave 40.5 and 39.4 with a 15 % darker sunlit side, under the earlier light.
+// (render_tuning.h) gave 40.5 and 39.4 with a 15 % darker sunlit side, under the earlier light.
 TEST_F(GpuRender, CloudStepsConvergeOnFinerSteps)
 {
     QualitySettings fine = testQuality();
-    fine.maxStepOpticalDepth = 0.2;
     fine.maxViewSteps = 256;
+    RenderTuning fineSteps;
+    fineSteps.maxStepOpticalDepth = 0.2;
+    // Each finer render with the finer steps, the renderer's default tuning around it.
+    const auto renderFine = [&](const WeatherSnapshot& weather, const ViewRequest& view) {
+        renderer->tuning = fineSteps;
+        RenderResult r = render(weather, view, fine);
+        renderer->tuning = RenderTuning{};
+        return r;
+    };
     WeatherSnapshot deck = deckBelowWeather();
     ViewRequest deckView = deckFromAboveView();
-    double deckPsnr = psnrCloud(render(deck, deckView), render(deck, deckView, fine));
+    double deckPsnr = psnrCloud(render(deck, deckView), renderFine(deck, deckView));
     WeatherSnapshot cell = isolatedCell(45.0, 7.15, 4000.0, CloudType::Cumulus, 1000.0f, 3000.0f);
     ViewRequest cellView = lookUp(45.0, 7.0, 1800.0, 3.0, "2026-06-21T17:00:00Z");
     cellView.pose.headingDeg = 90.0;
     cellView.fovYDeg = 40.0;
     cellView.unixTimeS = timeOfSunElevation(45.0, 7.0, "2026-06-21T14:00:00Z", 25.0);
-    double cellPsnr = psnrCloud(render(cell, cellView), render(cell, cellView, fine));
+    double cellPsnr = psnrCloud(render(cell, cellView), renderFine(cell, cellView));
     std::printf("against 5x finer cloud steps: deck %.2f dB, cumulus cell %.2f dB\n", deckPsnr, cellPsnr);
     EXPECT_GE(deckPsnr, 29.0);
     EXPECT_GE(cellPsnr, 34.0);

@@ -247,7 +247,7 @@ TEST(ReprojectionCpu, MarchBlockIsFinerNearAndInsideACloudLayer)
         EXPECT_EQ(b.reason.empty(), c.blockPx == 4) << b.reason;
     }
     // Inside an overcast layer (coverage >= kOvercastCoverage around the eye) a quarter of the pixels by
-    // default (QualitySettings::insideCloudBlockPx 2), every pixel when asked for (1); near it still 2.
+    // default (RenderTuning::insideCloudBlockPx 2), every pixel when asked for (1); near it still 2.
     resampleWeatherWindow(uniformLayer(0.9f, CloudType::Stratocumulus, 1500.0f, 2100.0f), 45.0, 7.0, 800000.0,
                           window, WEATHER_WINDOW_SIZE, 150000.0);
     MarchBlock fog = chooseMarchBlock(window, 1800.0);

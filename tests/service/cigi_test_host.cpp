@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "tests/service/cigi_test_host.h"
 
+#include "skyservice/cigi/cigi_fields.h"
+
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <poll.h>
@@ -21,9 +23,10 @@ bool parseIgReply(const std::vector<uint8_t>& bytes, IgReply& out, std::string& 
         error = "an IG datagram of " + std::to_string(bytes.size()) + " bytes does not start with Start of Frame";
         return false;
     }
-    if (bytes[6] == 0x80 && bytes[7] == 0x00)
+    constexpr uint8_t kMagicAt = PacketLayout<StartOfFrame>::magicOffset;
+    if (bytes[kMagicAt] == 0x80 && bytes[kMagicAt + 1] == 0x00)
         out.order = ByteOrder::Big;
-    else if (bytes[6] == 0x00 && bytes[7] == 0x80)
+    else if (bytes[kMagicAt] == 0x00 && bytes[kMagicAt + 1] == 0x80)
         out.order = ByteOrder::Little;
     else
     {

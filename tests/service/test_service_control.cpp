@@ -157,6 +157,32 @@ TEST(ServiceControl, SighupReloads)
     EXPECT_EQ(d.stop(), 0);
 }
 
+// The noise textures are made from noise.seed once, at start: a SIGHUP that changes the seed is refused,
+// naming the key, while the rest of the file applies (the render rate), and frames go on.
+TEST(ServiceControl, SighupRefusesANewNoiseSeed)
+{
+    TempDir tmp;
+    Daemon d;
+    std::string error;
+    DaemonConfig cfg = tinyFrames();
+    ASSERT_TRUE(d.start(tmp.path, cfg, error)) << error;
+    std::string changed = readFile(d.configPath);
+    changed.replace(changed.find("render_rate_hz = 0"), 18, "render_rate_hz = 5");
+    std::ofstream(d.configPath) << changed << "\n[noise]\nseed = 99\n";
+    ::kill(d.pid, SIGHUP);
+    RawClient c;
+    ASSERT_TRUE(c.open(d.socketPath));
+    json s;
+    ASSERT_TRUE(waitForStatus(c, [](const json& j) { return j["render_rate_hz"] == 5.0; }, 5000, &s)) << s;
+    EXPECT_NE(readFile(d.logPath).find("noise.seed changed (1 -> 99): takes effect after a restart"),
+              std::string::npos)
+        << readFile(d.logPath);
+    const uint64_t framesBefore = s["frame_id"].get<uint64_t>();
+    ASSERT_TRUE(waitForStatus(c, [&](const json& j) { return j["frame_id"].get<uint64_t>() > framesBefore; }, 5000, &s))
+        << s;
+    EXPECT_EQ(d.stop(), 0);
+}
+
 // SIGTERM: exit 0, the socket file and the shared-memory object are gone, no device memory left (the
 // daemon exits 1 when its tracker is not back to zero).
 TEST(ServiceControl, SigtermCleansUp)

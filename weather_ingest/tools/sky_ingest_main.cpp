@@ -2,6 +2,7 @@
 // sky-ingest: inspect weather model files and convert them to weather snapshots (README "sky-ingest").
 #include "progress_bar.h"
 
+#include "weather_ingest/civil_time.h"
 #include "weather_ingest/cloud_type_rules.h"
 #include "weather_ingest/ingest.h"
 #include "weather_ingest/ingest_error.h"
@@ -11,23 +12,12 @@
 
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 
 namespace
 {
 
 constexpr int kExitInternal = 1;
 constexpr int kExitUsage = 2;
-
-std::string isoTime(int64_t unixS)
-{
-    const auto t = static_cast<std::time_t>(unixS);
-    std::tm tm = {};
-    gmtime_r(&t, &tm);
-    char buf[32];
-    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-    return buf;
-}
 
 int runInfo(const std::vector<std::string>& files, bool rules)
 {
@@ -66,8 +56,8 @@ int runConvert(const std::vector<std::string>& files, const std::string& output,
     {
         const sky::LatLonGrid& g = result.snapshots.front().grid;
         std::printf("wrote %s: %zu snapshot(s), %u x %u grid, %s .. %s\n", output.c_str(), result.snapshots.size(),
-                    g.nLon, g.nLat, isoTime(result.snapshots.front().validTimeUnixS).c_str(),
-                    isoTime(result.snapshots.back().validTimeUnixS).c_str());
+                    g.nLon, g.nLat, sky::formatIso8601Utc(result.snapshots.front().validTimeUnixS).c_str(),
+                    sky::formatIso8601Utc(result.snapshots.back().validTimeUnixS).c_str());
     }
     return 0;
 }
@@ -104,7 +94,7 @@ int runCheck(const std::string& path, bool quiet)
     for (const sky::WeatherSnapshot& s : snapshots)
     {
         const sky::LatLonGrid& g = s.grid;
-        std::printf("  %s  grid %u x %u from (%g, %g) step (%g, %g)\n", isoTime(s.validTimeUnixS).c_str(), g.nLon,
+        std::printf("  %s  grid %u x %u from (%g, %g) step (%g, %g)\n", sky::formatIso8601Utc(s.validTimeUnixS).c_str(), g.nLon,
                     g.nLat, g.lat0Deg, g.lon0Deg, g.dLatDeg, g.dLonDeg);
         for (const sky::CloudLayerFields& l : s.layers)
         {
