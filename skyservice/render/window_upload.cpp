@@ -9,61 +9,21 @@ namespace sky
 namespace
 {
 
-/// The back images hold the wanted window now: they become the ones frames draw (the old ones become the
-/// back pair, still holding the old window, so an eye turning back swaps without a copy).
-void swapInBack(RendererWeather& w)
-{
-    std::swap(w.windowImage, w.back.windowImage);
-    std::swap(w.columnBoundsImage, w.back.columnBoundsImage);
-    std::swap(w.window, w.back.window);
-    w.wanted.reset();
-}
-
-/// Puts `w.wanted` on screen: swapped in as soon as its copy into the back images is done. While the copy
-/// runs, frames draw the current window when it is `usable` (the same weather, a flight from a neighbouring
-/// cell); else (the first frame, a new weather, a jump) this frame waits for the copy.
-SkyStatus showWantedWindow(Renderer& r, bool usable)
+/// Puts `window` into the images frames read: the copy is ordered on the GPU between the frames before
+/// and after it (window_copy.h), so this frame draws it without the CPU waiting, unless the previous copy
+/// still holds the command buffer.
+SkyStatus showWindow(Renderer& r, std::shared_ptr<const PreparedWindow> window)
 {
     RendererWeather& w = r.weather;
-    if (w.wanted == w.window)
+    if (!windowCopyDone(r.ctx, r.memory, w.copy))
     {
-        w.wanted.reset();
-        return SkyStatus::success();
-    }
-    if (w.back.window != w.wanted)
-    {
-        if (!windowCopyDone(r.ctx, w.back))
-        {
-            if (usable)
-                return SkyStatus::success();  // the back images are busy: a later frame copies this one
-            ++w.windowCopiesWaited;
-            SKY_TRY(waitWindowCopy(r.ctx, w.back));
-        }
-        SKY_TRY(startWindowCopy(r.ctx, r.memory, w.back, w.wanted));
-    }
-    if (!windowCopyDone(r.ctx, w.back))
-    {
-        if (usable)
-            return SkyStatus::success();
         ++w.windowCopiesWaited;
-        SKY_TRY(waitWindowCopy(r.ctx, w.back));
+        SKY_TRY(waitWindowCopy(r.ctx, r.memory, w.copy));
     }
-    swapInBack(w);
+    w.window.reset();  // until the copy is submitted, the images hold nothing usable
+    SKY_TRY(startWindowCopy(r.ctx, r.memory, w.copy, *window, w.windowImage, w.columnBoundsImage));
+    w.window = std::move(window);
     return SkyStatus::success();
-}
-
-/// A prefetched window whose job has finished goes into the back images ahead of the eye, so the frame
-/// that enters its cell swaps it in at once: no copy to wait for, the same window a one-shot render makes.
-SkyStatus copyFinishedPrefetch(Renderer& r)
-{
-    RendererWeather& w = r.weather;
-    if (w.wanted || !windowCopyDone(r.ctx, w.back))
-        return SkyStatus::success();  // the back images are taken
-    std::shared_ptr<const PreparedWindow> next = takeFinishedWindow(w.prefetch);
-    if (!next)
-        return SkyStatus::success();
-    w.backFromPrefetch = true;
-    return startWindowCopy(r.ctx, r.memory, w.back, std::move(next));
 }
 
 }  // namespace
@@ -76,13 +36,12 @@ SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const Qual
                   quality.windowHalfExtentM, quality.windowWarpRadiusM};
     // A staged weather whose window for this node is ready replaces the current one from this frame on
     // (with nothing drawn yet, this frame waits for it: there is no old weather to keep drawing).
-    bool usable = true;  // the window drawn may stand in while the wanted one is copied
+    std::shared_ptr<const PreparedWindow> wanted;  // the window to draw when it is not on the GPU yet
     if (std::optional<StagedResult> staged = advanceStage(w.stage, w.worker, key, !w.snapshot))
     {
         w.snapshot = staged->weather;
         w.version = staged->version;
-        w.wanted = staged->window;
-        usable = false;
+        wanted = staged->window;
         if (!staged->keepHistory)
             dropHistory(r);  // the previous frame shows other clouds (a small step's still matches them)
         key.weatherVersion = w.version;
@@ -92,30 +51,15 @@ SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const Qual
         setWeather(r, WeatherSnapshot{});  // no weather given (or the staged one was refused): an empty sky
         key.weatherVersion = w.version;
     }
-    // Motion since the last frame: a jump (or the first frame) leaves the window drawn unusable here.
     const glm::dvec3 moveEnu = glm::transpose(camera.enuToEcef) * (camera.eyeEcefM - w.lastEyeEcefM);
     const double moveM = glm::length(glm::dvec2(moveEnu));
     const bool hadFrame = w.lastFrameClock != std::chrono::steady_clock::time_point{};
-    const WindowKey& drawnKey = w.window ? w.window->key : WindowKey{};
-    usable = usable && w.window && hadFrame && moveM < kReprojectionMaxMoveM &&
-             drawnKey.weatherVersion == key.weatherVersion && drawnKey.halfExtentM == key.halfExtentM &&
-             drawnKey.warpRadiusM == key.warpRadiusM;
-    if (w.wanted && !(w.wanted->key == key))
-        w.wanted.reset();  // the eye left that cell before its window was swapped in
-    if (!w.wanted && !(w.window && w.window->key == key))
-    {
-        if (w.back.window && w.back.window->key == key)
-        {
-            w.wanted = w.back.window;
-            if (w.backFromPrefetch)
-                ++w.prefetch.used;  // made on the worker, copied ahead of the eye
-        }
-        else
-            w.wanted = takeWindow(w.prefetch, w.snapshot, key);
-        w.backFromPrefetch = false;
-    }
-    if (w.wanted)
-        SKY_TRY(showWantedWindow(r, usable));
+    if (wanted && !(wanted->key == key))
+        wanted.reset();
+    if (!wanted && !(w.window && w.window->key == key))
+        wanted = takeWindow(w.prefetch, w.snapshot, key);
+    if (wanted)
+        SKY_TRY(showWindow(r, std::move(wanted)));
     // The next node: the first one along the eye's horizontal motion, prefetched once it is within the
     // look-ahead (1.5 s of motion at the eye's speed, window_provider.h). The speed comes from real time
     // between frames; it only says when a window is made, never what is drawn.
@@ -133,11 +77,11 @@ SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const Qual
         {
             WindowKey nextKey = key;
             nextKey.centre = *next;
-            if (!(w.back.window && w.back.window->key == nextKey))  // else it is on the GPU already
-                prefetchWindow(w.prefetch, w.worker, w.snapshot, nextKey);
+            prefetchWindow(w.prefetch, w.worker, w.snapshot, nextKey);
         }
     }
-    return copyFinishedPrefetch(r);
+    windowCopyDone(r.ctx, r.memory, w.copy);  // releases the staging of a finished copy
+    return SkyStatus::success();
 }
 
 }  // namespace sky

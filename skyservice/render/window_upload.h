@@ -10,9 +10,9 @@ namespace sky
 
 // Puts the window of the eye's lattice node on the GPU (made on a worker thread ahead of time when the
 // eye flew toward it, else now), and starts the window of the node the eye is heading for. A new window is
-// copied into the back images (window_copy.h) without waiting; frames go on drawing the current one until
-// the copy's fence has signalled (a frame or two after a flight crosses into a new cell). Only a frame
-// with no usable window (the first, a new weather, a jump or new window settings) waits for the copy.
+// copied into the images on the frame queue, ordered on the GPU between the frames before and after it
+// (window_copy.h): the CPU does not wait, and the frame that enters a cell draws that cell's window, as
+// a one-shot render of its view does.
 SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const QualitySettings& quality);
 
 }  // namespace sky

@@ -22,12 +22,12 @@ SkyStatus createWeatherImages(const Context& ctx, MemoryTracker& memory, Rendere
     bounds.height = WEATHER_WINDOW_SIZE;
     bounds.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
     SKY_TRY(createImage(ctx, memory, w.columnBoundsImage, bounds, "weather column bounds"));
-    return createWindowCopy(ctx, memory, w.back, d, bounds);
+    return createWindowCopy(ctx, w.copy);
 }
 
 void destroyWeatherImages(const Context& ctx, MemoryTracker& memory, RendererWeather& w)
 {
-    destroyWindowCopy(ctx, memory, w.back);
+    destroyWindowCopy(ctx, memory, w.copy);
     destroyImage(ctx, memory, w.windowImage);
     destroyImage(ctx, memory, w.columnBoundsImage);
 }

@@ -33,20 +33,17 @@ struct RendererWeather
     /// eye, weather/window_lattice.h): frames whose eye stays in that node's cell, with the same weather
     /// and window settings, reuse it.
     std::shared_ptr<const PreparedWindow> window;
-    /// The window of the eye's node when it is not `window` yet: being copied into `back`, then swapped in.
-    std::shared_ptr<const PreparedWindow> wanted;
-    WindowCopy back;           ///< the second pair of window images and the copy into them (window_copy.h)
-    bool backFromPrefetch = false;  ///< back.window is a prefetched one copied ahead of the eye, not drawn yet
+    WindowCopy copy;           ///< puts a new window into the images below without waiting (window_copy.h)
     WindowPrefetch prefetch;   ///< the next cell's window, made on `worker`
     glm::dvec3 lastEyeEcefM{0.0};  ///< eye of the previous frame: its motion says which cell is next
     std::chrono::steady_clock::time_point lastFrameClock{};  ///< when the previous frame began (real time)
     double eyeSpeedMps = 0;    ///< estimate of the eye's horizontal speed: it sets the look-ahead
     Image windowImage;         ///< `window`'s slices the shaders read (shaders/shared/weather_window.h)
     Image columnBoundsImage;   ///< its column-bounds pyramid (shaders/shared/column_bounds.h)
-    uint64_t windowCopiesWaited = 0;  ///< frames that waited for a window copy (no other window to draw)
+    uint64_t windowCopiesWaited = 0;  ///< frames that waited for the previous window copy to finish
 };
 
-/// Makes the window's GPU images, both pairs (filled by the first frame's updateWeatherWindow).
+/// Makes the window's GPU images (filled by the first frame's updateWeatherWindow) and their copy.
 SkyStatus createWeatherImages(const Context& ctx, MemoryTracker& memory, RendererWeather& weather);
 /// Destroys the images (after a copy in flight); the worker's jobs finish on their own (the worker joins
 /// when RendererWeather goes).

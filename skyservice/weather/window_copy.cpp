@@ -27,11 +27,8 @@ void recordCopy(VkCommandBuffer cmd, const Buffer& staging, const Image& image, 
 
 }  // namespace
 
-SkyStatus createWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& copy, const ImageDesc& windowDesc,
-                           const ImageDesc& columnBoundsDesc)
+SkyStatus createWindowCopy(const Context& ctx, WindowCopy& copy)
 {
-    SKY_TRY(createImage(ctx, memory, copy.windowImage, windowDesc, "weather window (back)"));
-    SKY_TRY(createImage(ctx, memory, copy.columnBoundsImage, columnBoundsDesc, "weather column bounds (back)"));
     VkCommandPoolCreateInfo poolInfo = {VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     poolInfo.queueFamilyIndex = ctx.queueFamily;
@@ -56,19 +53,16 @@ void destroyWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& co
     if (copy.pool)
         vkDestroyCommandPool(ctx.device, copy.pool, nullptr);
     destroyBuffer(ctx, memory, copy.staging);
-    destroyImage(ctx, memory, copy.windowImage);
-    destroyImage(ctx, memory, copy.columnBoundsImage);
     copy = WindowCopy{};
 }
 
-SkyStatus startWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& copy,
-                          std::shared_ptr<const PreparedWindow> window)
+SkyStatus startWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& copy, const PreparedWindow& window,
+                          const Image& windowImage, const Image& columnBoundsImage)
 {
-    const std::vector<uint16_t>& texels = window->gpuTexelsHalf;
-    const std::vector<uint8_t>& bounds = window->columnBounds;
+    const std::vector<uint16_t>& texels = window.gpuTexelsHalf;
+    const std::vector<uint8_t>& bounds = window.columnBounds;
     const size_t texelBytes = texels.size() * sizeof(uint16_t);
     const size_t total = aligned(texelBytes) + aligned(bounds.size());
-    copy.window.reset();  // until the copy is submitted, the back images hold nothing usable
     if (copy.staging.size < total)
     {
         destroyBuffer(ctx, memory, copy.staging);  // no copy in flight reads it
@@ -82,8 +76,8 @@ SkyStatus startWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy&
     VkCommandBufferBeginInfo begin = {VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_TRY(vkBeginCommandBuffer(copy.cmd, &begin));
-    recordCopy(copy.cmd, copy.staging, copy.windowImage, 0);
-    recordCopy(copy.cmd, copy.staging, copy.columnBoundsImage, aligned(texelBytes));
+    recordCopy(copy.cmd, copy.staging, windowImage, 0);
+    recordCopy(copy.cmd, copy.staging, columnBoundsImage, aligned(texelBytes));
     VK_TRY(vkEndCommandBuffer(copy.cmd));
     VK_TRY(vkResetFences(ctx.device, 1, &copy.fence));
     VkSubmitInfo submit = {VK_STRUCTURE_TYPE_SUBMIT_INFO};
@@ -92,29 +86,28 @@ SkyStatus startWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy&
     const VkResult r = vkQueueSubmit(ctx.queue, 1, &submit, copy.fence);
     if (r != VK_SUCCESS)
         return SkyStatus::failure(std::string("weather window copy submit failed: ") + vkResultName(r), r);
-    copy.window = std::move(window);
     copy.inFlight = true;
     return SkyStatus::success();
 }
 
-bool windowCopyDone(const Context& ctx, WindowCopy& copy)
+bool windowCopyDone(const Context& ctx, MemoryTracker& memory, WindowCopy& copy)
 {
     if (copy.inFlight && vkGetFenceStatus(ctx.device, copy.fence) == VK_SUCCESS)
         copy.inFlight = false;
+    if (!copy.inFlight)
+        destroyBuffer(ctx, memory, copy.staging);  // nothing reads it any more
     return !copy.inFlight;
 }
 
-SkyStatus waitWindowCopy(const Context& ctx, WindowCopy& copy)
+SkyStatus waitWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& copy)
 {
     if (!copy.inFlight)
         return SkyStatus::success();
     const VkResult r = vkWaitForFences(ctx.device, 1, &copy.fence, VK_TRUE, UINT64_MAX);
     copy.inFlight = false;
     if (r != VK_SUCCESS)
-    {
-        copy.window.reset();
         return SkyStatus::failure(std::string("weather window copy failed: ") + vkResultName(r), r);
-    }
+    destroyBuffer(ctx, memory, copy.staging);
     return SkyStatus::success();
 }
 

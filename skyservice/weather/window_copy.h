@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
-// The second pair of weather-window images and the copy into them, which runs while frames go on drawing
-// the first pair (renderer_weather.h): a new window never goes into an image that a frame in flight reads,
-// and the frame thread does not wait for the copy. Frames swap the pair in once its fence has signalled
-// (window_upload.h decides when).
+// The copy of a new weather window into the images frames read (renderer_weather.h), without the frame
+// thread waiting for it and without a second pair of images (which would cost the 1080p device-memory
+// budget another 4.4 MB, tests/gpu/test_memory.cpp).
 //
-// The copy is submitted on the frame queue after the frames that last read these images: its first
-// barrier orders the writes after their reads on the GPU, so the CPU need not wait for them. Its last
-// barrier makes the texels visible to every frame submitted after it.
+// The copy is submitted on the frame queue between two frames. Its first barrier (source scope: all
+// commands) orders its writes after the reads of the frames submitted before it, which draw the old
+// window; its last barrier makes the texels visible to every frame submitted after it, which draw the new
+// one. So the frame that wants a new window draws it at once, with no CPU wait, and its picture is the
+// one a one-shot render of the same view makes. The staging buffer lives only while a copy runs.
 #pragma once
 
 #include "skyservice/weather/window_provider.h"
@@ -19,30 +20,25 @@ namespace sky
 
 struct WindowCopy
 {
-    Image windowImage;        ///< the back window slices (shaders/shared/weather_window.h)
-    Image columnBoundsImage;  ///< the back column-bounds pyramid (shaders/shared/column_bounds.h)
-    /// The window these images hold, or are being filled with (null: none, or the copy failed).
-    std::shared_ptr<const PreparedWindow> window;
-    bool inFlight = false;    ///< the copy of `window` was submitted and its fence has not been seen signalled
-    Buffer staging;           ///< the bytes of the copy (host-visible; reused, grown when a window needs more)
+    bool inFlight = false;    ///< a copy was submitted and its fence has not been seen signalled
+    Buffer staging;           ///< the bytes of the copy in flight (host-visible; released once it is done)
     VkCommandPool pool = VK_NULL_HANDLE;
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     VkFence fence = VK_NULL_HANDLE;
 };
 
-/// Makes the back images like `windowImage` and `columnBoundsImage` (descs), the command buffer and fence.
-SkyStatus createWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& copy, const ImageDesc& windowDesc,
-                           const ImageDesc& columnBoundsDesc);
+/// Makes the command buffer and fence.
+SkyStatus createWindowCopy(const Context& ctx, WindowCopy& copy);
 /// Waits for a copy in flight, then destroys everything.
 void destroyWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& copy);
 
-/// Records and submits the copy of `window` into the back images, and returns without waiting. The
-/// previous copy must be done (windowCopyDone).
-SkyStatus startWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& copy,
-                          std::shared_ptr<const PreparedWindow> window);
-/// True when no copy is in flight any more (polls the fence, never waits).
-bool windowCopyDone(const Context& ctx, WindowCopy& copy);
-/// Waits for the copy in flight (for a frame that has no other window to draw).
-SkyStatus waitWindowCopy(const Context& ctx, WindowCopy& copy);
+/// Records and submits the copy of `window` into `windowImage` and `columnBoundsImage`, and returns
+/// without waiting. The previous copy must be done (windowCopyDone).
+SkyStatus startWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& copy, const PreparedWindow& window,
+                          const Image& windowImage, const Image& columnBoundsImage);
+/// True when no copy is in flight any more (polls the fence, never waits); then releases the staging.
+bool windowCopyDone(const Context& ctx, MemoryTracker& memory, WindowCopy& copy);
+/// Waits for the copy in flight (before the next copy reuses the command buffer).
+SkyStatus waitWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& copy);
 
 }  // namespace sky
