@@ -80,7 +80,6 @@ SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const Qual
             prefetchWindow(w.prefetch, w.worker, w.snapshot, nextKey);
         }
     }
-    windowCopyDone(r.ctx, r.memory, w.copy);  // releases the staging of a finished copy
     return SkyStatus::success();
 }
 

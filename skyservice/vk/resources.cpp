@@ -54,6 +54,8 @@ SkyStatus allocate(const Context& ctx, MemoryTracker& tracker, const VkMemoryReq
     tracker.liveBytes[name] += req.size;
     if (use == MemoryUse::HostReadback)
         tracker.hostReadbackBytes += req.size;
+    else if (use == MemoryUse::HostStaging)
+        tracker.hostStagingBytes += req.size;
     else
     {
         tracker.totalBytes += req.size;
@@ -63,7 +65,7 @@ SkyStatus allocate(const Context& ctx, MemoryTracker& tracker, const VkMemoryReq
 }
 
 void release(const Context& ctx, MemoryTracker& tracker, VkDeviceMemory& memory, VkDeviceSize size,
-             const std::string& name, bool hostReadback = false)
+             const std::string& name, bool hostReadback = false, bool hostStaging = false)
 {
     if (!memory)
         return;
@@ -77,7 +79,8 @@ void release(const Context& ctx, MemoryTracker& tracker, VkDeviceMemory& memory,
         if (it->second == 0)
             tracker.liveBytes.erase(it);
     }
-    VkDeviceSize& total = hostReadback ? tracker.hostReadbackBytes : tracker.totalBytes;
+    VkDeviceSize& total =
+        hostReadback ? tracker.hostReadbackBytes : hostStaging ? tracker.hostStagingBytes : tracker.totalBytes;
     total -= std::min(total, size);
 }
 
@@ -131,6 +134,7 @@ SkyStatus createBuffer(const Context& ctx, MemoryTracker& tracker, Buffer& out, 
         VK_CHECK(vkMapMemory(ctx.device, out.memory, 0, VK_WHOLE_SIZE, 0, &out.mapped));
     out.hostCoherent = coherent;
     out.hostReadback = use == MemoryUse::HostReadback;
+    out.hostStaging = use == MemoryUse::HostStaging;
     // The descriptor range must not exceed the buffer's own size (VUID-VkDescriptorBufferInfo-range-00342,
     // seen on NVIDIA where req.size is padded); the tracker counts the padded allocation.
     out.size = size;
@@ -144,7 +148,8 @@ void destroyBuffer(const Context& ctx, MemoryTracker& tracker, Buffer& buffer)
 {
     if (buffer.buffer)
         vkDestroyBuffer(ctx.device, buffer.buffer, nullptr);
-    release(ctx, tracker, buffer.memory, buffer.allocationBytes, buffer.name, buffer.hostReadback);
+    release(ctx, tracker, buffer.memory, buffer.allocationBytes, buffer.name, buffer.hostReadback,
+            buffer.hostStaging);
     buffer = Buffer{};
 }
 

@@ -23,6 +23,7 @@ struct MemoryTracker
     VkDeviceSize totalBytes = 0;
     VkDeviceSize peakBytes = 0;
     VkDeviceSize hostReadbackBytes = 0;  ///< MemoryUse::HostReadback buffers (system RAM), not in totalBytes
+    VkDeviceSize hostStagingBytes = 0;   ///< MemoryUse::HostStaging buffers (system RAM), not in totalBytes
 };
 
 struct Buffer
@@ -32,6 +33,7 @@ struct Buffer
     void* mapped = nullptr;  ///< non-null for host-visible buffers (persistently mapped)
     bool hostCoherent = true;  ///< false: the CPU must invalidate before it reads (invalidateForHost)
     bool hostReadback = false; ///< made with MemoryUse::HostReadback (counted in hostReadbackBytes)
+    bool hostStaging = false;  ///< made with MemoryUse::HostStaging (counted in hostStagingBytes)
     VkDeviceSize size = 0;             ///< bytes asked for: the range a descriptor of the whole buffer covers
     VkDeviceSize allocationBytes = 0;  ///< bytes of device memory behind it (size rounded up by the driver)
     std::string name;
@@ -61,6 +63,10 @@ enum class MemoryUse
     /// persistent readback buffers. On NVIDIA host-visible memory without HOST_CACHED is read uncached, at
     /// tens of MB/s. Counted apart from device memory (MemoryTracker::hostReadbackBytes): it is system RAM.
     HostReadback,
+    /// Mapped, coherent: the persistent source of an upload (the weather window's staging). On a discrete
+    /// GPU host-visible memory without DEVICE_LOCAL is system RAM; counted apart from device memory
+    /// (MemoryTracker::hostStagingBytes).
+    HostStaging,
 };
 
 /// Creates a buffer. On failure returns the error and leaves `out` empty.

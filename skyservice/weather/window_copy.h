@@ -7,7 +7,8 @@
 // commands) orders its writes after the reads of the frames submitted before it, which draw the old
 // window; its last barrier makes the texels visible to every frame submitted after it, which draw the new
 // one. So the frame that wants a new window draws it at once, with no CPU wait, and its picture is the
-// one a one-shot render of the same view makes. The staging buffer lives only while a copy runs.
+// one a one-shot render of the same view makes. The staging buffer is kept (reallocating it per window
+// fragments the host heap) and counted as host memory (MemoryUse::HostStaging).
 #pragma once
 
 #include "skyservice/weather/window_provider.h"
@@ -21,7 +22,7 @@ namespace sky
 struct WindowCopy
 {
     bool inFlight = false;    ///< a copy was submitted and its fence has not been seen signalled
-    Buffer staging;           ///< the bytes of the copy in flight (host-visible; released once it is done)
+    Buffer staging;           ///< the bytes of the copy (host memory; reused, grown when a window needs more)
     VkCommandPool pool = VK_NULL_HANDLE;
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     VkFence fence = VK_NULL_HANDLE;
@@ -36,7 +37,7 @@ void destroyWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& co
 /// without waiting. The previous copy must be done (windowCopyDone).
 SkyStatus startWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& copy, const PreparedWindow& window,
                           const Image& windowImage, const Image& columnBoundsImage);
-/// True when no copy is in flight any more (polls the fence, never waits); then releases the staging.
+/// True when no copy is in flight any more (polls the fence, never waits).
 bool windowCopyDone(const Context& ctx, MemoryTracker& memory, WindowCopy& copy);
 /// Waits for the copy in flight (before the next copy reuses the command buffer).
 SkyStatus waitWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& copy);
