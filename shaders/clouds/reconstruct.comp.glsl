@@ -57,9 +57,9 @@ const float kDepthTolerance = 0.1f;
 const float kDepthToleranceFloorM = 100.0f;
 // The colour box of the fresh neighbourhood is widened by this share of its size on each side plus an
 // absolute margin (pre-exposed radiance is ~1 by day): fresh pixels are B pixels apart, so detail
-// between them is often outside their range and still right. Measured on the 2-degree pan of
-// tests/gpu/test_reprojection.cpp: a box not widened loses ~1.5 dB against full-resolution renders,
-// widened by its size ~0.1 dB, while gross misses (a cloud reprojected onto clear sky) stay rejected.
+// between them is often outside their range and still right. Widened by its own size, the box keeps
+// that detail on a pan (tests/gpu/test_reprojection.cpp; figures in BENCHMARKS.md) while gross misses
+// (a cloud reprojected onto clear sky) stay rejected.
 const float kClampWiden = 1.0f;
 const float kClampMargin = 0.02f;
 
@@ -119,10 +119,10 @@ ivec2 freshBlockCount(ivec2 phase, int B)
 }
 
 // The fresh pixels interpolated bilinearly at `pixel`: what a pixel without any history shows. Outside
-// the fresh pixels' grid (the image borders) the nearest row or column is extended. Measured on the
-// turns of tests/gpu/test_flight_path.cpp: the worst 8-pixel band the view turns toward is 0.7-1.7 dB
-// closer to the full render than with the nearest fresh pixel, which copies B x B blocks there; for
-// rejected history inside the image the nearest pixel measured better.
+// the fresh pixels' grid (the image borders) the nearest row or column is extended. Bilinear, because
+// the nearest fresh pixel copies B x B blocks into the band a turning view uncovers, which ends up
+// further from the full render (tests/gpu/test_flight_path.cpp; figures in BENCHMARKS.md); for rejected
+// history inside the image the nearest pixel does better.
 vec4 freshBilinear(ivec2 pixel, ivec2 phase, int B)
 {
     vec2 u = vec2(pixel - phase) / float(B);
@@ -198,8 +198,8 @@ vec4 reconstructPixel(ivec2 pixel, ivec2 block, ivec2 phase, int B, INOUT(FreshB
     // anything far away), read the previous depth found there, and project again at that depth (one
     // fixed-point step: follows the parallax of near clouds when the eye moves; exact for a still
     // camera). Zero depth (no cloud) keeps the direction alone: the second step would repeat the first.
-    // Starting from the previous depth at this pixel instead measured 1-2 dB worse on a pan with
-    // 50-200 m of eye motion per frame.
+    // Starting from the previous depth at this pixel instead misplaces near clouds when the eye moves
+    // tens of metres per frame (BENCHMARKS.md).
     vec3 dir = viewRayDirection(vec2(pixel) + 0.5f);
     vec2 q = vec2(0.0f);
     vec3 v = dir;

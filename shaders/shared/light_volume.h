@@ -15,7 +15,7 @@
 // diffuse term up to 2x too brightly there. Transmittance, not optical depth, because the
 // march interpolates between texels: across a cloud's edge, where the tail goes from clear to opaque, the
 // mean of two optical depths made the lit side far too dark (Jensen: exp of a mean is below the mean of
-// exps); measured on tests/gpu/test_light_volume.cpp's cumulus from below, 33.6 dB with optical depth. The first cone samples stay live and detailed,
+// exps; tests/gpu/test_light_volume.cpp's cumulus from below shows it). The first cone samples stay live and detailed,
 // because they make the sunlit skin of a cloud (a mean free path is ~20 m); the tail starts 210 m away
 // and spreads over a cone hundreds of metres wide, so 160 m texels lose little.
 #ifndef SKY_SHARED_LIGHT_VOLUME_H

@@ -75,8 +75,8 @@ std::vector<uint8_t> buildColumnBounds(const WeatherWindow& window)
                         const float type = window.at(slice, a, b).w;
                         // The anvil slab keeps its whole layer: bounded by anvilSlabCloudRange, its thin
                         // edge emptied columns beside the Cb's tower, and the search's jumps there moved
-                        // the tower's samples (gpu.GpuRender.EmptySpaceSkippingDrawsTheSameClouds: 39.6
-                        // against 46-47 dB). cloudDensity still skips the noise there.
+                        // the tower's samples (gpu.GpuRender.EmptySpaceSkippingDrawsTheSameClouds).
+                        // cloudDensity still skips the noise there.
                         HeightFractionRange r;  // the whole layer
                         if (!anvil && std::isfinite(type))
                             r = layerCloudRange(int(type + 0.5f), maxCoverage);

@@ -29,8 +29,7 @@ double psnrCloud(const RenderResult& test, const RenderResult& reference, Column
 
 /// The reference's own radiance scale: the 99th percentile, over its pixels of alpha >= 0.5, of the
 /// largest rgb channel (premultiplied). psnrCloud's peak is mostly alpha's 1, so a light twice as bright
-/// doubles the error against a fixed peak (6 dB less) with nothing rendered worse; this scale follows the
-/// light. 1 when no pixel is that opaque.
+/// doubles the error against a fixed peak with nothing rendered worse; this scale follows the light. 1 when no pixel is that opaque.
 double radianceScale(const RenderResult& reference);
 /// Cloud-image PSNR independent of the picture's brightness: rgb differences over `rgbScale` (by default
 /// radianceScale(reference)), alpha differences over 1 (its range), peak 1.

@@ -192,10 +192,9 @@ TEST_F(Channels, TurningChannelsAgreeAtTheSharedEdge) { expectNoSeam({250.0, 60.
 // Two channels of one display wall (off-centre frusta, the same heading) meet at the view axis, flying
 // and turning. The seam alone does not show whether the previous frame is projected through the
 // off-centre frustum (history read at the wrong place is mostly rejected and filled from the fresh
-// pixels: S 0.031 then), so each channel's reprojected frame is also held to its full render: measured
-// 26.3 / 24.8 dB (the symmetric channels of TurningChannelsAgreeAtTheSharedEdge 25.6 / 24.7, the
-// symmetric view along the wall's axis 27.1); with the previous camera's centre offset left out
-// (reprojection.cpp) 21.1 / 21.0 dB.
+// pixels), so each channel's reprojected frame is also held to its full render: with the previous
+// camera's centre offset left out (reprojection.cpp) that comparison falls well below the bound
+// (figures in BENCHMARKS.md).
 TEST_F(Channels, DisplayWallChannelsAgreeAtTheSharedEdge)
 {
     const glm::dvec2 reprojectedDb =
@@ -262,15 +261,12 @@ TEST_F(Channels, SameInputsGiveIdenticalBytesOnAnotherRenderer)
 
 // Nothing ties the clouds to the screen: the last columns of a channel (heading 0) equal a view centred
 // on its edge (heading 20) at the same rays. That view is rendered at 8x the resolution so that sampling
-// it bilinearly at the channel's rays adds little (at 1x, a quarter of a row of vertical offset across the
-// deck's horizon alone makes 0.007 of the peak; under the light tuned to the path-traced reference, 0.0046
-// at 4x, 0.0035 at 8x, against 0.0087 between neighbouring columns: what is left at 4x is resampling). Measured: 0.0022 at the same rays; neighbouring columns
-// (I, as in the seam tests) 0.006 (shares of the largest channel, before the finer cloud shapes; with them,
-// on the radiance scale, 0.0067 and 0.0091 under the earlier light, 0.0073 and 0.0098 under the light tuned
-// to the path-traced reference: over 0.5 I whatever the light). Compared column for column with a view of the channel's size, the
-// two differ by 0.0155 (the "a|c" difference of earlier notes), but those are not the same rays: at the
-// edge of a level view a row's rays are ~6 % lower than at its centre (elevation
-// atan(y tanY / sqrt(1 + (x tanX)^2))).
+// it bilinearly at the channel's rays adds little (at 1x a fraction of a row of vertical offset across the
+// deck's horizon alone is as large as the difference between neighbouring columns). The difference at the
+// same rays stays well under half that between neighbouring columns (I, as in the seam tests), whatever
+// the light (figures in BENCHMARKS.md). A view of the channel's size compared column for column differs
+// more, but those are not the same rays: at the edge of a level view a row's rays are lower than at its
+// centre (elevation atan(y tanY / sqrt(1 + (x tanX)^2))).
 TEST_F(Channels, AChannelsEdgeMatchesACentredViewAtTheSameRays)
 {
     ViewRequest va = channel(0.0), vc = channel(20.0), fine = channel(20.0);
