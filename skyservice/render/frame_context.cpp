@@ -31,15 +31,7 @@ SkyStatus createFrameContext(const Context& ctx, MemoryTracker& memory, FrameCon
 {
     frame = FrameContext{};
     const std::string n = std::to_string(index);
-    VkCommandPoolCreateInfo poolInfo = {VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-    poolInfo.queueFamilyIndex = ctx.queueFamily;
-    VK_TRY(vkCreateCommandPool(ctx.device, &poolInfo, nullptr, &frame.pool));
-    VkCommandBufferAllocateInfo alloc = {VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = frame.pool;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    VK_TRY(vkAllocateCommandBuffers(ctx.device, &alloc, &frame.cmd));
+    SKY_TRY(createCommandBuffer(ctx, VK_COMMAND_POOL_CREATE_TRANSIENT_BIT, frame.pool, frame.cmd));
     VkFenceCreateInfo fenceInfo = {VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VK_TRY(vkCreateFence(ctx.device, &fenceInfo, nullptr, &frame.fence));
     VkQueryPoolCreateInfo queryInfo = {VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};

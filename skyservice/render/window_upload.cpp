@@ -15,10 +15,10 @@ namespace
 SkyStatus showWindow(Renderer& r, std::shared_ptr<const PreparedWindow> window)
 {
     RendererWeather& w = r.weather;
-    if (!windowCopyDone(r.ctx, r.memory, w.copy))
+    if (!windowCopyDone(r.ctx, w.copy))
     {
         ++w.windowCopiesWaited;
-        SKY_TRY(waitWindowCopy(r.ctx, r.memory, w.copy));
+        SKY_TRY(waitWindowCopy(r.ctx, w.copy));
     }
     w.window.reset();  // until the copy is submitted, the images hold nothing usable
     SKY_TRY(startWindowCopy(r.ctx, r.memory, w.copy, *window, w.windowImage, w.columnBoundsImage));

@@ -263,17 +263,24 @@ void computeBarrier(VkCommandBuffer cmd)
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
-SkyStatus beginOneShot(const Context& ctx, OneShot& shot)
+SkyStatus createCommandBuffer(const Context& ctx, VkCommandPoolCreateFlags flags, VkCommandPool& pool,
+                              VkCommandBuffer& cmd)
 {
     VkCommandPoolCreateInfo poolInfo = {VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    poolInfo.flags = flags;
     poolInfo.queueFamilyIndex = ctx.queueFamily;
-    VK_TRY(vkCreateCommandPool(ctx.device, &poolInfo, nullptr, &shot.pool));
+    VK_TRY(vkCreateCommandPool(ctx.device, &poolInfo, nullptr, &pool));
     VkCommandBufferAllocateInfo alloc = {VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = shot.pool;
+    alloc.commandPool = pool;
     alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     alloc.commandBufferCount = 1;
-    VK_CHECK(vkAllocateCommandBuffers(ctx.device, &alloc, &shot.cmd));
+    VK_TRY(vkAllocateCommandBuffers(ctx.device, &alloc, &cmd));
+    return SkyStatus::success();
+}
+
+SkyStatus beginOneShot(const Context& ctx, OneShot& shot)
+{
+    SKY_TRY(createCommandBuffer(ctx, VK_COMMAND_POOL_CREATE_TRANSIENT_BIT, shot.pool, shot.cmd));
     VkCommandBufferBeginInfo begin = {VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(shot.cmd, &begin));

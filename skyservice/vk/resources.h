@@ -101,6 +101,10 @@ void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from
 /// A compute->compute memory barrier covering every image and buffer (our passes are few and large).
 void computeBarrier(VkCommandBuffer cmd);
 
+/// A command pool (`flags`) on the queue's family and one primary command buffer from it.
+SkyStatus createCommandBuffer(const Context& ctx, VkCommandPoolCreateFlags flags, VkCommandPool& pool,
+                              VkCommandBuffer& cmd);
+
 /// A one-shot command buffer submitted and waited for: start-up uploads and readbacks.
 struct OneShot
 {

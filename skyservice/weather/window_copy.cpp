@@ -29,15 +29,7 @@ void recordCopy(VkCommandBuffer cmd, const Buffer& staging, const Image& image, 
 
 SkyStatus createWindowCopy(const Context& ctx, WindowCopy& copy)
 {
-    VkCommandPoolCreateInfo poolInfo = {VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    poolInfo.queueFamilyIndex = ctx.queueFamily;
-    VK_TRY(vkCreateCommandPool(ctx.device, &poolInfo, nullptr, &copy.pool));
-    VkCommandBufferAllocateInfo alloc = {VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = copy.pool;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    VK_TRY(vkAllocateCommandBuffers(ctx.device, &alloc, &copy.cmd));
+    SKY_TRY(createCommandBuffer(ctx, VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT, copy.pool, copy.cmd));
     VkFenceCreateInfo fenceInfo = {VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VK_TRY(vkCreateFence(ctx.device, &fenceInfo, nullptr, &copy.fence));
     setObjectName(ctx, VK_OBJECT_TYPE_FENCE, uint64_t(copy.fence), "weather window copy");
@@ -90,15 +82,14 @@ SkyStatus startWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy&
     return SkyStatus::success();
 }
 
-bool windowCopyDone(const Context& ctx, MemoryTracker& memory, WindowCopy& copy)
+bool windowCopyDone(const Context& ctx, WindowCopy& copy)
 {
     if (copy.inFlight && vkGetFenceStatus(ctx.device, copy.fence) == VK_SUCCESS)
         copy.inFlight = false;
-    (void)memory;
     return !copy.inFlight;
 }
 
-SkyStatus waitWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& copy)
+SkyStatus waitWindowCopy(const Context& ctx, WindowCopy& copy)
 {
     if (!copy.inFlight)
         return SkyStatus::success();
@@ -106,7 +97,6 @@ SkyStatus waitWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& 
     copy.inFlight = false;
     if (r != VK_SUCCESS)
         return SkyStatus::failure(std::string("weather window copy failed: ") + vkResultName(r), r);
-    (void)memory;
     return SkyStatus::success();
 }
 

@@ -38,8 +38,8 @@ void destroyWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& co
 SkyStatus startWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& copy, const PreparedWindow& window,
                           const Image& windowImage, const Image& columnBoundsImage);
 /// True when no copy is in flight any more (polls the fence, never waits).
-bool windowCopyDone(const Context& ctx, MemoryTracker& memory, WindowCopy& copy);
+bool windowCopyDone(const Context& ctx, WindowCopy& copy);
 /// Waits for the copy in flight (before the next copy reuses the command buffer).
-SkyStatus waitWindowCopy(const Context& ctx, MemoryTracker& memory, WindowCopy& copy);
+SkyStatus waitWindowCopy(const Context& ctx, WindowCopy& copy);
 
 }  // namespace sky
