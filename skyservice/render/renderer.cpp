@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/renderer.h"
 
+#include <algorithm>
+
 namespace sky
 {
 
@@ -48,25 +50,39 @@ void destroyRenderer(Renderer& r)
     destroyContext(r.ctx);
 }
 
-void setWeather(Renderer& r, const WeatherSnapshot& snapshot)
+namespace
+{
+
+/// `version`, or one newer than any given so far (kNewWeatherVersion).
+uint64_t takeVersion(RendererWeather& w, uint64_t version)
+{
+    if (version == kNewWeatherVersion)
+        version = w.newestVersion + 1;
+    w.newestVersion = std::max(w.newestVersion, version);
+    return version;
+}
+
+}  // namespace
+
+void setWeather(Renderer& r, const WeatherSnapshot& snapshot, uint64_t version)
 {
     r.weather.snapshot = std::make_shared<const WeatherSnapshot>(snapshot);
-    r.weather.version = ++r.weather.versionsIssued;
+    r.weather.version = takeVersion(r.weather, version);
     cancelStage(r.weather.stage);  // older than this one
     dropHistory(r);  // the previous frame shows other clouds
 }
 
-uint64_t stageWeather(Renderer& r, WeatherMaker make, StageSwap swap, StageHistory history)
+uint64_t stageWeather(Renderer& r, WeatherMaker make, StageSwap swap, StageHistory history, uint64_t version)
 {
-    const uint64_t version = ++r.weather.versionsIssued;
+    version = takeVersion(r.weather, version);
     stage(r.weather.stage, version, std::move(make), swap, history);
     return version;
 }
 
 uint64_t stageWeather(Renderer& r, std::shared_ptr<const WeatherSnapshot> snapshot, StageSwap swap,
-                      StageHistory history)
+                      StageHistory history, uint64_t version)
 {
-    return stageWeather(r, [snapshot = std::move(snapshot)] { return snapshot; }, swap, history);
+    return stageWeather(r, [snapshot = std::move(snapshot)] { return snapshot; }, swap, history, version);
 }
 
 void releaseStagedWeather(Renderer& r) { releaseStage(r.weather.stage); }

@@ -91,9 +91,15 @@ inline FrameContext& recording(Renderer& r) { return r.frames[r.currentFrame]; }
 SkyStatus createRenderer(Renderer& r, const RendererOptions& options);
 void destroyRenderer(Renderer& r);
 
+/// A weather's version is its caller's: the service gives each weather it draws (a load, a CIGI fade
+/// step) one number and passes it with every sample of that weather, so the renderer's frames
+/// (RenderResult::weatherVersion) and the service's status count the same thing. Samples of one version
+/// differ by their valid time (WindowKey). kNewWeatherVersion: one newer than any the renderer was given.
+inline constexpr uint64_t kNewWeatherVersion = 0;
+
 /// Replaces the weather (copied). Takes effect at the next renderView, which makes its window on the
 /// frame path (for one-shot renders and tests). Forgets a staged weather.
-void setWeather(Renderer& r, const WeatherSnapshot& snapshot);
+void setWeather(Renderer& r, const WeatherSnapshot& snapshot, uint64_t version = kNewWeatherVersion);
 
 /// Stages a new weather (weather_stage.h): its snapshot is made by `make` (or given), validated and its
 /// window prepared on a worker thread while frames keep drawing the current weather; the first frame
@@ -101,11 +107,12 @@ void setWeather(Renderer& r, const WeatherSnapshot& snapshot);
 /// reprojection history (with StageHistory::Keep, a small step such as a fade step, it keeps it). A newer
 /// stage replaces one not swapped in yet; a bad weather is dropped (the current one stays;
 /// weather.stage.lastError says why). With no weather drawn yet, the next frame waits for it. Returns the
-/// version the weather will have (RenderResult::weatherVersion).
+/// version the weather will have (RenderResult::weatherVersion): `version`, or a new one.
 uint64_t stageWeather(Renderer& r, WeatherMaker make, StageSwap swap = StageSwap::WhenReady,
-                      StageHistory history = StageHistory::Drop);
+                      StageHistory history = StageHistory::Drop, uint64_t version = kNewWeatherVersion);
 uint64_t stageWeather(Renderer& r, std::shared_ptr<const WeatherSnapshot> snapshot,
-                      StageSwap swap = StageSwap::WhenReady, StageHistory history = StageHistory::Drop);
+                      StageSwap swap = StageSwap::WhenReady, StageHistory history = StageHistory::Drop,
+                      uint64_t version = kNewWeatherVersion);
 /// Lets a weather staged with StageSwap::WhenReleased swap in at the first frame it is ready for.
 void releaseStagedWeather(Renderer& r);
 /// Forgets the staged weather (a job under way finishes on the worker; its result is dropped).

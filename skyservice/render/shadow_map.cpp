@@ -53,6 +53,7 @@ ShadowMapDrawing drawingFor(const ShadowMapInputs& in, const ViewRequest& reques
     d.quality = quality;
     d.tuning = in.tuning;
     d.weatherVersion = in.weatherVersion;
+    d.weatherValidTimeUnixS = in.weatherValidTimeUnixS;
     d.window = in.window;
     d.unixTimeS = request.unixTimeS;
     d.eyeEcefM = camera.eyeEcefM;
@@ -66,7 +67,7 @@ bool sameMap(const ShadowMapDrawing& last, const ShadowMapDrawing& next)
 {
     if (!last.valid || last.sizeTexels != next.sizeTexels || last.extentM != next.extentM ||
         !(last.quality == next.quality) || !(last.tuning == next.tuning) || last.weatherVersion != next.weatherVersion ||
-        last.window != next.window || last.unixTimeS != next.unixTimeS || last.lightIsMoon != next.lightIsMoon)
+        last.weatherValidTimeUnixS != next.weatherValidTimeUnixS || last.window != next.window || last.unixTimeS != next.unixTimeS || last.lightIsMoon != next.lightIsMoon)
         return false;
     const double texelM = next.extentM / double(next.sizeTexels);
     const double shadowShiftM = glm::length(shadowOffsetM(next.lightEnu) - shadowOffsetM(last.lightEnu));

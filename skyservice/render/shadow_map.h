@@ -108,7 +108,8 @@ struct ShadowMapDrawing
     double extentM = 0;
     QualitySettings quality;
     RenderTuning tuning;
-    uint64_t weatherVersion = 0;
+    uint64_t weatherVersion = 0;      ///< and valid time: the snapshot drawn from (WindowKey)
+    int64_t weatherValidTimeUnixS = 0;
     const void* window = nullptr;     ///< the weather window drawn from (ShadowMapInputs::window)
     int64_t unixTimeS = 0;            ///< the view's whole second: a map is at most a second behind the wind
     glm::dvec3 eyeEcefM{0.0};

@@ -32,8 +32,10 @@ SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const Qual
 {
     const auto now = std::chrono::steady_clock::now();
     RendererWeather& w = r.weather;
-    WindowKey key{w.version, windowCentreForEye(camera.eye.latDeg, camera.eye.lonDeg),
-                  quality.windowHalfExtentM, quality.windowWarpRadiusM};
+    WindowKey key;  // its weather part is set once this frame's snapshot is known
+    key.centre = windowCentreForEye(camera.eye.latDeg, camera.eye.lonDeg);
+    key.halfExtentM = quality.windowHalfExtentM;
+    key.warpRadiusM = quality.windowWarpRadiusM;
     // A staged weather whose window for this node is ready replaces the current one from this frame on
     // (with nothing drawn yet, this frame waits for it: there is no old weather to keep drawing).
     std::shared_ptr<const PreparedWindow> wanted;  // the window to draw when it is not on the GPU yet
@@ -44,13 +46,11 @@ SkyStatus updateWeatherWindow(Renderer& r, const CameraFrame& camera, const Qual
         wanted = staged->window;
         if (!staged->keepHistory)
             dropHistory(r);  // the previous frame shows other clouds (a small step's still matches them)
-        key.weatherVersion = w.version;
     }
     if (!w.snapshot)
-    {
         setWeather(r, WeatherSnapshot{});  // no weather given (or the staged one was refused): an empty sky
-        key.weatherVersion = w.version;
-    }
+    key.weatherVersion = w.version;
+    key.weatherValidTimeUnixS = w.snapshot->validTimeUnixS;
     const glm::dvec3 moveEnu = glm::transpose(camera.enuToEcef) * (camera.eyeEcefM - w.lastEyeEcefM);
     const double moveM = glm::length(glm::dvec2(moveEnu));
     const bool hadFrame = w.lastFrameClock != std::chrono::steady_clock::time_point{};

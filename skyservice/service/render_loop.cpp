@@ -380,7 +380,7 @@ void RenderLoop::Impl::frameDone(uint64_t id, const SkyStatus& status, double ms
         ++s.framesRendered;
         s.recordFrameMs(ms);
         s.recordFrameTimes(FrameTimes{id, ms, lastPublishMs, result.gpuMs});
-        s.frameWeather = FrameWeather{lastDrawn.serviceVersion, lastDrawn.source, result.weatherValidTimeUnixS, true};
+        s.frameWeather = FrameWeather{result.weatherVersion, lastDrawn.source, result.weatherValidTimeUnixS, true};
     }
     s.weatherPending = weatherSchedule.pending();
     s.windowsMadeOnFramePath = r.weather.prefetch.madeOnFrame;
@@ -398,7 +398,7 @@ bool RenderLoop::Impl::writeFiles(const std::string& prefix, const std::string& 
 {
     RenderFacts facts;
     facts.weatherSource = lastDrawn.source;  // the weather `result` drew
-    facts.weatherVersion = lastDrawn.serviceVersion;
+    facts.weatherVersion = lastDrawn.version;
     facts.timeIso = formatIso8601Utc(lastRequest.unixTimeS);
     facts.deviceName = setup.renderer->ctx.deviceName;
     facts.driver = setup.renderer->ctx.driverInfo;

@@ -46,9 +46,9 @@ void WeatherSchedule::stage(Renderer& r, const WeatherState& weather, int64_t sa
     s.direction = direction;
     s.held = direction != 0;
     stageWeather(r, sampler(weather, sampleAtUnixS), s.held ? StageSwap::WhenReleased : StageSwap::WhenReady,
-                 history);
+                 history, weather.version);
     staged_ = s;
-    lastServiceVersion_ = weather.version;
+    lastHandedVersion_ = weather.version;
 }
 
 void WeatherSchedule::beforeFrame(Renderer& r, const WeatherState& weather, const SimClock& clock, double simTimeS)
@@ -57,21 +57,21 @@ void WeatherSchedule::beforeFrame(Renderer& r, const WeatherState& weather, cons
     if (!started_ || clock.jumps != clockJumpsSeen_)
     {
         // Nothing to keep drawing yet, or a jump in time: this frame draws the weather of its time.
-        setWeather(r, *sampler(weather, second)());
+        setWeather(r, *sampler(weather, second)(), weather.version);
         drawn_ = DrawnWeather{weather.version, weatherName(weather), second};
         staged_.reset();
-        lastServiceVersion_ = weather.version;
+        lastHandedVersion_ = weather.version;
         clockJumpsSeen_ = clock.jumps;
         started_ = true;
         return;
     }
-    if (weather.version != lastServiceVersion_)
+    if (weather.version != lastHandedVersion_)
     {
         // A newly loaded weather (replaces a staged re-sample), or a small step of a fade that keeps the
         // reprojection history: then a re-sample staged and not drawn yet is dropped first (the renderer
         // keeps the history only when every stage a small one replaces was small too), the step samples
         // this second anyway.
-        const bool small = weather.smallStepFrom == lastServiceVersion_ && weather.version == lastServiceVersion_ + 1;
+        const bool small = weather.smallStepFrom == lastHandedVersion_;
         if (small && staged_ && staged_->direction != 0)
         {
             cancelStagedWeather(r);

@@ -39,10 +39,11 @@ inline constexpr double kWeatherResampleS = 60;
 /// over it (e.g. "/data/gfs.skywx + cigi").
 std::string weatherName(const WeatherState& weather);
 
-/// What a frame drew: the service's weather (WeatherState::version, source) sampled at a time.
+/// What a frame drew: the service's weather (WeatherState::version, which the renderer is given as the
+/// weather's version, renderer.h) and its source, sampled at a time.
 struct DrawnWeather
 {
-    uint64_t serviceVersion = 0;
+    uint64_t version = 0;
     std::string source;
     int64_t sampledAtUnixS = 0;
 };
@@ -73,7 +74,7 @@ private:
 
     DrawnWeather drawn_;
     std::optional<Staged> staged_;
-    uint64_t lastServiceVersion_ = 0;  ///< the newest service weather handed to the renderer
+    uint64_t lastHandedVersion_ = 0;  ///< the newest WeatherState::version handed to the renderer
     uint64_t clockJumpsSeen_ = 0;
     bool started_ = false;
 };

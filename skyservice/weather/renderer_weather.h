@@ -24,10 +24,11 @@ struct RendererWeather
     /// runs hold their own references to what they read, and the futures below never wait on it.
     WeatherWorker worker;
     std::shared_ptr<const WeatherSnapshot> snapshot;  ///< the weather drawn (shared with the worker's jobs)
-    /// Of `snapshot`: a new one per setWeather or staged weather swapped in. Windows carry the version
-    /// they were made from (WindowKey::weatherVersion), so a window of an older weather is never used.
+    /// Of `snapshot`: the caller's (setWeather / stageWeather; renderer.h says whose). Windows carry the
+    /// version and valid time of the snapshot they were made from (WindowKey), so a window of another
+    /// weather, or of another sample of this one, is never used.
     uint64_t version = 0;
-    uint64_t versionsIssued = 0;  ///< the last version given out (staged weathers get theirs early)
+    uint64_t newestVersion = 0;  ///< the newest version given (staged weathers get theirs early)
     WeatherStage stage;           ///< a new weather being prepared on `worker` (weather_stage.h)
     /// The window frames draw, in windowImage and columnBoundsImage (centred on a lattice node near the
     /// eye, weather/window_lattice.h): frames whose eye stays in that node's cell, with the same weather

@@ -41,7 +41,9 @@ StagedResult runStageJob(const WeatherMaker& make, std::shared_ptr<const Weather
         }
     }
     out.weather = std::move(weather);
-    out.window = prepareWindow(*out.weather, key);
+    WindowKey made = key;
+    made.weatherValidTimeUnixS = out.weather->validTimeUnixS;  // known once the snapshot is made
+    out.window = prepareWindow(*out.weather, made);
     return out;
 }
 
@@ -68,6 +70,7 @@ void stage(WeatherStage& s, uint64_t version, WeatherMaker make, StageSwap swap,
     forgetStaged(s);
     s.keepHistory = keep;
     s.version = version;
+    s.ticket = ++s.ticketsIssued;
     s.held = swap == StageSwap::WhenReleased;
     s.make = std::move(make);
 }
@@ -83,9 +86,9 @@ std::optional<StagedResult> advanceStage(WeatherStage& s, WeatherWorker& worker,
         // Collect a finished job (with `wait`, also an unfinished one: it must be done before ours starts).
         if (s.job.valid() && (wait || finished(s.job)))
         {
-            const uint64_t jobVersion = s.jobVersion;
+            const uint64_t jobTicket = s.jobTicket;
             StagedResult result = s.job.get();
-            if (jobVersion == s.version && s.version != 0)  // else superseded or cancelled: dropped
+            if (jobTicket == s.ticket && stagePending(s))  // else superseded or cancelled: dropped
             {
                 if (!result.error.empty())
                 {
@@ -105,6 +108,7 @@ std::optional<StagedResult> advanceStage(WeatherStage& s, WeatherWorker& worker,
             return std::nullopt;
         WindowKey want = eyeKey;
         want.weatherVersion = s.version;
+        want.weatherValidTimeUnixS = s.weather ? s.weather->validTimeUnixS : 0;  // no window before the snapshot
         if (s.ready && !(s.ready->key == want))
             s.ready.reset();  // the eye went to another cell meanwhile: the window alone is made again
         if (s.ready && (!s.held || wait))
@@ -117,7 +121,7 @@ std::optional<StagedResult> advanceStage(WeatherStage& s, WeatherWorker& worker,
         }
         if (!s.ready && !s.job.valid())
         {
-            s.jobVersion = s.version;
+            s.jobTicket = s.ticket;
             WeatherMaker make = std::move(s.make);  // the snapshot is made once; s.weather keeps it after
             s.make = nullptr;
             std::shared_ptr<const WeatherSnapshot> weather = s.weather;

@@ -69,6 +69,7 @@ struct StagedResult
 struct WeatherStage
 {
     uint64_t version = 0;  ///< version of the staged weather (0: none staged)
+    uint64_t ticket = 0;   ///< which stage() call `version` came from (a re-stage of one version is a new one)
     bool held = false;     ///< StageSwap::WhenReleased and not released yet
     /// StageHistory::Keep and so was every stage it replaced before they swapped in: the frames still draw
     /// the weather before those, so a small step over a replaced big one is a big change.
@@ -78,7 +79,8 @@ struct WeatherStage
     std::shared_ptr<const PreparedWindow> ready;     ///< its window, for ready->key
 
     std::future<StagedResult> job;  ///< valid while a job was started and not collected
-    uint64_t jobVersion = 0;        ///< the version `job` works for (older than `version` if superseded)
+    uint64_t jobTicket = 0;         ///< the ticket `job` works for (older than `ticket` if superseded)
+    uint64_t ticketsIssued = 0;
 
     std::string lastError;   ///< the last refused weather and why ("" once a staged weather swapped in)
     uint64_t swapped = 0;    ///< staged weathers swapped in

@@ -40,13 +40,16 @@ inline constexpr double kEyeSpeedMemoryS = 2.0;
 /// What a window was made from: the same key gives the same texels.
 struct WindowKey
 {
-    uint64_t weatherVersion = 0;  ///< RendererWeather::version when it was made
+    /// The snapshot it was made from: its weather's version (RendererWeather::version) and its valid time,
+    /// which tells apart the samples of one weather at different times.
+    uint64_t weatherVersion = 0;
+    int64_t weatherValidTimeUnixS = 0;
     WindowCentre centre;
     double halfExtentM = 0, warpRadiusM = 0;
     bool operator==(const WindowKey& o) const
     {
-        return weatherVersion == o.weatherVersion && centre == o.centre && halfExtentM == o.halfExtentM &&
-               warpRadiusM == o.warpRadiusM;
+        return weatherVersion == o.weatherVersion && weatherValidTimeUnixS == o.weatherValidTimeUnixS &&
+               centre == o.centre && halfExtentM == o.halfExtentM && warpRadiusM == o.warpRadiusM;
     }
 };
 

@@ -50,7 +50,7 @@ TEST_F(CigiHistory, AFadeStepKeepsTheReprojectionHistoryANewSnapshotDropsIt)
         schedule.beforeFrame(*renderer, s.weather, s.clock, s.clock.baseUnixS);
         renderOk(s.view, q);
         schedule.afterFrame(*renderer);
-        s.frameWeather = FrameWeather{schedule.drawn().serviceVersion, schedule.drawn().source, 0, true};
+        s.frameWeather = FrameWeather{schedule.drawn().version, schedule.drawn().source, 0, true};
         // The IG clock moves on only once the schedule has drawn what it was handed: on a loaded machine the
         // weather worker may take several frames per step, and the fade would otherwise end in fewer steps.
         if (!schedule.pending())

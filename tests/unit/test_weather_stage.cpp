@@ -40,7 +40,7 @@ WeatherWorker& worker()
 WindowKey keyAt(double latDeg, double lonDeg)
 {
     QualitySettings q;
-    return WindowKey{0, windowCentreForEye(latDeg, lonDeg), q.windowHalfExtentM, q.windowWarpRadiusM};
+    return WindowKey{0, 0, windowCentreForEye(latDeg, lonDeg), q.windowHalfExtentM, q.windowWarpRadiusM};
 }
 
 std::shared_ptr<const WeatherSnapshot> builtin(int64_t t)
@@ -88,6 +88,7 @@ TEST(WeatherStage, SwapsInTheWindowAFrameWouldMakeAndNeverOnTheStepThatStartsIt)
     EXPECT_EQ(out->weather, weather);
     WindowKey expected = eye;
     expected.weatherVersion = 7;
+    expected.weatherValidTimeUnixS = kNoon;
     EXPECT_TRUE(out->window->key == expected);
     // The window depends on its key only: the one a frame would make for itself is the same.
     std::shared_ptr<const PreparedWindow> direct = prepareWindow(*weather, expected);
@@ -135,12 +136,34 @@ TEST(WeatherStage, ANewerStageSupersedesAnOlderOneWhoseJobStillRuns)
     EXPECT_FALSE(advanceStage(s, worker(), eye, false));  // job 1 starts and blocks on the gate
     stage(s, 2, [newer] { return newer; }, StageSwap::WhenReady);
     EXPECT_FALSE(advanceStage(s, worker(), eye, false));  // job 1 still runs: never abandoned, never waited for
-    EXPECT_EQ(s.jobVersion, 1u);
+    EXPECT_NE(s.jobTicket, s.ticket);
     gate.set_value();
     std::optional<StagedResult> out = stepUntilDone(s, eye);
     ASSERT_TRUE(out);
     EXPECT_EQ(out->version, 2u);
     EXPECT_EQ(out->weather, newer);
+    EXPECT_EQ(s.swapped, 1u);
+}
+
+// One weather (one version) sampled at two times: the service re-stages a running clock's next sample
+// under the loaded weather's version. The second stage supersedes the first all the same, and its window
+// is keyed by its own valid time.
+TEST(WeatherStage, ASecondSampleOfOneVersionSupersedesTheFirst)
+{
+    WeatherStage s;
+    std::promise<void> gate;
+    std::shared_future<void> open = gate.get_future().share();
+    auto first = builtin(kNoon), second = builtin(kNoon + 60);
+    stage(s, 4, [open, first] { open.wait(); return first; }, StageSwap::WhenReady);
+    const WindowKey eye = keyAt(44.3, 7.5);
+    EXPECT_FALSE(advanceStage(s, worker(), eye, false));  // the first sample's job starts, blocked
+    stage(s, 4, [second] { return second; }, StageSwap::WhenReady);
+    gate.set_value();
+    std::optional<StagedResult> out = stepUntilDone(s, eye);
+    ASSERT_TRUE(out);
+    EXPECT_EQ(out->version, 4u);
+    EXPECT_EQ(out->weather, second) << "the superseded sample's result was taken";
+    EXPECT_EQ(out->window->key.weatherValidTimeUnixS, kNoon + 60);
     EXPECT_EQ(s.swapped, 1u);
 }
 
