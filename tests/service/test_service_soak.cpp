@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <thread>
 #include <vector>
 
 using namespace skytest;
@@ -53,21 +54,37 @@ TEST(ServiceSoak, MemoryStaysFlat)
         }
         if (last >= nextSwap)
         {
+            const uint64_t loadedBefore = c.request({{"type", "status"}})["weather"]["version"].get<uint64_t>();
             json r = c.request({{"type", "load_weather"}, {"path", wx[swaps % 2]}});
             ASSERT_EQ(r.value("type", ""), "ok") << r;
             ++swaps;
-            nextSwap += 100;
-            s = c.request({{"type", "status"}});
+            nextSwap = last + 100;
+            // Each sample is taken once the frames draw the weather just loaded (the load is done on the
+            // loader thread: status weather.version passes the one before it, and weather.frame.version
+            // reaches it), so every sample sees the same state: one weather drawn, none staged.
+            // Sampling on a frame count alone measures how many loads a busy machine has queued meanwhile.
+            const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+            for (;;)
+            {
+                s = c.request({{"type", "status"}});
+                const json& w = s["weather"];
+                const uint64_t loaded = w["version"].get<uint64_t>();
+                if (loaded > loadedBefore && w["frame"].is_object() && w["frame"]["version"].get<uint64_t>() >= loaded &&
+                    !w["pending"].get<bool>())
+                    break;
+                ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the loaded weather was never drawn: " << s;
+                std::this_thread::sleep_for(std::chrono::milliseconds(5));
+            }
             uint64_t device = s["device_memory_bytes"];
             long rss = residentKb(d.pid);
             if (std::getenv("SKY_SOAK_VERBOSE"))
                 std::printf("soak: frame %llu RSS %ld kB device %llu bytes\n", (unsigned long long)last, rss,
                             (unsigned long long)device);
-            // Warm-up: the first 400 frames set the baseline. Measured (SKY_SOAK_VERBOSE=1): RSS climbs by
+            // Warm-up: the first four swaps set the baseline. Measured (SKY_SOAK_VERBOSE=1): RSS climbs by
             // ~20 MB over the first three swaps (each file loaded on the loader thread once, then its
             // timeline replaced: malloc's per-thread arenas settle), then only moves by about one weather
             // window from swap to swap (below).
-            if (last < 400)
+            if (swaps <= 4)
                 continue;
             if (rssSamples.empty())
                 deviceWarm = device;
