@@ -76,6 +76,110 @@ void ensureBuffer(const VulkanDevice& vk, HostBuffer& buffer, VkDeviceSize bytes
     createHostBuffer(vk, bytes, buffer);
 }
 
+// Copies the frame (already in p.upload) into the staging image and leaves it ready to blit from.
+void recordUpload(VkCommandBuffer cmd, const Presenter& p, const sky::ImageRgba8& image)
+{
+    imageBarrier(cmd, p.staging, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    VkBufferImageCopy upload = {};
+    upload.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    upload.imageExtent = {image.width, image.height, 1};
+    vkCmdCopyBufferToImage(cmd, p.upload.buffer, p.staging, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &upload);
+    imageBarrier(cmd, p.staging, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_PIPELINE_STAGE_TRANSFER_BIT);
+}
+
+// Scales the staging image onto the whole swapchain image, which is left in TRANSFER_DST layout.
+void recordBlitToSwapchain(VkCommandBuffer cmd, const Presenter& p, const Swapchain& sc, const sky::ImageRgba8& image,
+                           VkImage target)
+{
+    // The acquire semaphore is waited on at the transfer stage, so the swapchain image's transition waits too.
+    imageBarrier(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    VkImageBlit blit = {};
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.srcOffsets[1] = {int32_t(image.width), int32_t(image.height), 1};
+    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.dstOffsets[1] = {int32_t(sc.width), int32_t(sc.height), 1};
+    vkCmdBlitImage(cmd, p.staging, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   1, &blit, VK_FILTER_LINEAR);
+}
+
+// Copies the swapchain image (after the blit) into p.readback; returns the layout it is left in.
+VkImageLayout recordReadback(VkCommandBuffer cmd, const Presenter& p, const Swapchain& sc, VkImage target)
+{
+    imageBarrier(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_PIPELINE_STAGE_TRANSFER_BIT);
+    const VkImageLayout layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    VkBufferImageCopy copy = {};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {sc.width, sc.height, 1};
+    vkCmdCopyImageToBuffer(cmd, target, layout, p.readback.buffer, 1, &copy);
+    return layout;
+}
+
+// Records the frame's commands into p.cmd: upload, blit to the swapchain image, optional readback,
+// hand-over to the presentation engine.
+void recordPresentCommands(const Presenter& p, const Swapchain& sc, const sky::ImageRgba8& image, VkImage target,
+                           bool readBack)
+{
+    VkCommandBuffer cmd = p.cmd;
+    DEMO_VK_CHECK(vkResetCommandBuffer(cmd, 0));
+    VkCommandBufferBeginInfo begin = {VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    DEMO_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    recordUpload(cmd, p, image);
+    recordBlitToSwapchain(cmd, p, sc, image, target);
+    VkImageLayout layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    if (readBack)
+        layout = recordReadback(cmd, p, sc, target);
+    imageBarrier(cmd, target, layout, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_ACCESS_TRANSFER_WRITE_BIT, 0,
+                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
+    DEMO_VK_CHECK(vkEndCommandBuffer(cmd));
+}
+
+// Submits p.cmd after the acquire and queues swapchain image `index` for presentation after it.
+VkResult submitAndPresent(const VulkanDevice& vk, Presenter& p, const Swapchain& sc, uint32_t index)
+{
+    const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    VkSubmitInfo submit = {VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.waitSemaphoreCount = 1;
+    submit.pWaitSemaphores = &p.imageAcquired;
+    submit.pWaitDstStageMask = &waitStage;
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &p.cmd;
+    submit.signalSemaphoreCount = 1;
+    submit.pSignalSemaphores = &p.renderDone;
+    DEMO_VK_CHECK(vkQueueSubmit(vk.queue, 1, &submit, p.frameDone));
+
+    VkPresentInfoKHR present = {VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+    present.waitSemaphoreCount = 1;
+    present.pWaitSemaphores = &p.renderDone;
+    present.swapchainCount = 1;
+    present.pSwapchains = &sc.swapchain;
+    present.pImageIndices = &index;
+    return vkQueuePresentKHR(vk.queue, &present);
+}
+
+// Waits for the frame and copies p.readback into `screenshot` as RGBA with opaque alpha.
+void readScreenshot(const VulkanDevice& vk, const Presenter& p, const Swapchain& sc, sky::ImageRgba8& screenshot)
+{
+    DEMO_VK_CHECK(vkWaitForFences(vk.device, 1, &p.frameDone, VK_TRUE, UINT64_MAX));
+    screenshot.width = sc.width;
+    screenshot.height = sc.height;
+    const auto* src = static_cast<const uint8_t*>(p.readback.mapped);
+    screenshot.pixels.assign(src, src + size_t(sc.width) * sc.height * 4);
+    const bool bgra = sc.format == VK_FORMAT_B8G8R8A8_UNORM || sc.format == VK_FORMAT_B8G8R8A8_SRGB;
+    for (size_t i = 0; i < screenshot.pixels.size(); i += 4)
+    {
+        if (bgra)
+            std::swap(screenshot.pixels[i], screenshot.pixels[i + 2]);
+        screenshot.pixels[i + 3] = 255;
+    }
+}
+
 }  // namespace
 
 void createPresenter(const VulkanDevice& vk, Presenter& p)
@@ -133,79 +237,10 @@ SwapchainStatus presentImage(const VulkanDevice& vk, Presenter& p, const Swapcha
         ensureBuffer(vk, p.readback, VkDeviceSize(sc.width) * sc.height * 4);
     const VkImage target = sc.images[index];
 
-    VkCommandBuffer cmd = p.cmd;
-    DEMO_VK_CHECK(vkResetCommandBuffer(cmd, 0));
-    VkCommandBufferBeginInfo begin = {VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    DEMO_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-    imageBarrier(cmd, p.staging, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
-                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
-    VkBufferImageCopy upload = {};
-    upload.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    upload.imageExtent = {image.width, image.height, 1};
-    vkCmdCopyBufferToImage(cmd, p.upload.buffer, p.staging, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &upload);
-    imageBarrier(cmd, p.staging, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                 VK_PIPELINE_STAGE_TRANSFER_BIT);
-    // The acquire semaphore is waited on at the transfer stage, so the swapchain image's transition waits too.
-    imageBarrier(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
-                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
-    VkImageBlit blit = {};
-    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.srcOffsets[1] = {int32_t(image.width), int32_t(image.height), 1};
-    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.dstOffsets[1] = {int32_t(sc.width), int32_t(sc.height), 1};
-    vkCmdBlitImage(cmd, p.staging, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
-                   &blit, VK_FILTER_LINEAR);
-    VkImageLayout layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    recordPresentCommands(p, sc, image, target, readBack);
+    const VkResult presented = submitAndPresent(vk, p, sc, index);
     if (readBack)
-    {
-        imageBarrier(cmd, target, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT,
-                     VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
-        layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-        VkBufferImageCopy copy = {};
-        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        copy.imageExtent = {sc.width, sc.height, 1};
-        vkCmdCopyImageToBuffer(cmd, target, layout, p.readback.buffer, 1, &copy);
-    }
-    imageBarrier(cmd, target, layout, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_ACCESS_TRANSFER_WRITE_BIT, 0,
-                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
-    DEMO_VK_CHECK(vkEndCommandBuffer(cmd));
-
-    const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
-    VkSubmitInfo submit = {VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.waitSemaphoreCount = 1;
-    submit.pWaitSemaphores = &p.imageAcquired;
-    submit.pWaitDstStageMask = &waitStage;
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd;
-    submit.signalSemaphoreCount = 1;
-    submit.pSignalSemaphores = &p.renderDone;
-    DEMO_VK_CHECK(vkQueueSubmit(vk.queue, 1, &submit, p.frameDone));
-
-    VkPresentInfoKHR present = {VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
-    present.waitSemaphoreCount = 1;
-    present.pWaitSemaphores = &p.renderDone;
-    present.swapchainCount = 1;
-    present.pSwapchains = &sc.swapchain;
-    present.pImageIndices = &index;
-    const VkResult presented = vkQueuePresentKHR(vk.queue, &present);
-
-    if (readBack)
-    {
-        DEMO_VK_CHECK(vkWaitForFences(vk.device, 1, &p.frameDone, VK_TRUE, UINT64_MAX));
-        screenshot->width = sc.width;
-        screenshot->height = sc.height;
-        const auto* src = static_cast<const uint8_t*>(p.readback.mapped);
-        screenshot->pixels.assign(src, src + size_t(sc.width) * sc.height * 4);
-        const bool bgra = sc.format == VK_FORMAT_B8G8R8A8_UNORM || sc.format == VK_FORMAT_B8G8R8A8_SRGB;
-        for (size_t i = 0; i < screenshot->pixels.size(); i += 4)
-        {
-            if (bgra)
-                std::swap(screenshot->pixels[i], screenshot->pixels[i + 2]);
-            screenshot->pixels[i + 3] = 255;
-        }
-    }
+        readScreenshot(vk, p, sc, *screenshot);
     if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR || acquired == VK_SUBOPTIMAL_KHR)
         p.outOfDate = true;
     else if (presented != VK_SUCCESS)

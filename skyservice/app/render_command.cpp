@@ -85,9 +85,13 @@ bool startRenderer(const CommonRenderOptions& o, uint32_t noiseSeed, Renderer& r
     return false;
 }
 
-int runRenderCommand(const RenderCommandOptions& options)
+namespace
 {
-    ViewRequest request = options.request;
+
+// The request's time, the view and the quality from the command line; kExitOk, or kExitUsage with the
+// message printed. All of it is refused before the device starts.
+int readRenderRequest(const RenderCommandOptions& options, ViewRequest& request, QualitySettings& quality)
+{
     std::string error;
     if (!parseIso8601Utc(options.time, request.unixTimeS, error))
     {
@@ -99,7 +103,6 @@ int runRenderCommand(const RenderCommandOptions& options)
         std::fprintf(stderr, "skyservice render: %s\n", error.c_str());
         return kExitUsage;
     }
-    QualitySettings quality;
     if (!qualityFromOptions(options.common, quality, error))
     {
         std::fprintf(stderr, "skyservice render: %s\n", error.c_str());
@@ -109,8 +112,79 @@ int runRenderCommand(const RenderCommandOptions& options)
         quality.detail = false;
     if (options.noHighCloud)
         quality.highCloud = false;
+    return kExitOk;
+}
+
+ReferenceSettings referenceSettingsOf(const RenderCommandOptions& options)
+{
+    ReferenceSettings referenceSettings;
+    referenceSettings.samplesPerPixel = options.referenceSpp;
+    referenceSettings.phase = options.referencePhase == "mie" ? ReferencePhase::HgDraine : ReferencePhase::Model;
+    referenceSettings.dropletDiameterUm = options.dropletDiameterUm;
+    return referenceSettings;
+}
+
+// The JSON sidecar's facts; with --reference, the path tracer's settings and counters under
+// quality.reference.
+RenderFacts renderFactsOf(const Renderer& renderer, const ReferenceRenderer& reference,
+                          const RenderCommandOptions& options, const ViewRequest& request,
+                          const QualitySettings& quality, const ReferenceSettings& referenceSettings)
+{
+    RenderFacts facts;
+    facts.weatherSource = options.weather;
+    facts.timeIso = formatIso8601Utc(request.unixTimeS);
+    facts.deviceName = renderer.ctx.deviceName;
+    facts.driver = renderer.ctx.driverInfo;
+    facts.quality = qualityToJson(quality);
+    if (options.reference)
+        facts.quality["reference"] = {
+            {"samplesPerPixel", referenceSettings.samplesPerPixel},
+            {"phase", options.referencePhase},
+            {"dropletDiameterUm", referenceSettings.dropletDiameterUm},
+            {"maxScatteringEvents", referenceSettings.maxEvents},
+            {"pathsTruncated", reference.last.pathsTruncated},
+            {"majorantExceeded", reference.last.majorantExceeded},
+            {"pathsCut", reference.last.pathsCut},
+            {"paths", reference.last.paths},
+            {"steps", reference.last.steps},
+            {"stretchesSkipped", reference.last.stretchesSkipped},
+            {"dispatches", reference.last.dispatches},
+            {"maxDispatches", reference.last.maxDispatches},
+            {"seconds", reference.last.seconds}};
+    return facts;
+}
+
+// Writes PREFIX.png/.exr/.json (and the shadow map's files) and says what it wrote; the exit code.
+int writeRenderOutputs(const RenderCommandOptions& options, const ViewRequest& request, const RenderResult& result,
+                       const RenderFacts& facts)
+{
+    std::string error;
+    if (!writeRenderFiles(options.out, request, result, facts, error))
+    {
+        std::fprintf(stderr, "skyservice render: %s\n", error.c_str());
+        return kExitRuntime;
+    }
+    const char* timing = options.reference ? "reference" : "total";
+    std::printf("wrote %s.png %s.exr %s.json (%s %.1f ms)\n", options.out.c_str(), options.out.c_str(),
+                options.out.c_str(), options.reference ? "path tracing" : "GPU",
+                result.gpuMs.count(timing) ? result.gpuMs.at(timing) : 0.0);
+    if (result.shadowMapSize > 0)
+        std::printf("wrote %s-shadow.exr %s-shadow.png (GPU %.1f ms)\n", options.out.c_str(),
+                    options.out.c_str(), result.gpuMs.count("shadowMap") ? result.gpuMs.at("shadowMap") : 0.0);
+    return kExitOk;
+}
+
+}  // namespace
+
+int runRenderCommand(const RenderCommandOptions& options)
+{
+    ViewRequest request = options.request;
+    QualitySettings quality;
+    if (const int code = readRenderRequest(options, request, quality); code != kExitOk)
+        return code;
 
     WeatherSnapshot weather;
+    std::string error;
     if (!loadWeatherSource(options.weather, request.unixTimeS, weather, error))
     {
         std::fprintf(stderr, "skyservice render: --weather %s: %s\n", options.weather.c_str(), error.c_str());
@@ -123,10 +197,7 @@ int runRenderCommand(const RenderCommandOptions& options)
     setWeather(renderer, weather);
     RenderResult result;
     ReferenceRenderer reference;
-    ReferenceSettings referenceSettings;
-    referenceSettings.samplesPerPixel = options.referenceSpp;
-    referenceSettings.phase = options.referencePhase == "mie" ? ReferencePhase::HgDraine : ReferencePhase::Model;
-    referenceSettings.dropletDiameterUm = options.dropletDiameterUm;
+    const ReferenceSettings referenceSettings = referenceSettingsOf(options);
     SkyStatus status = options.reference ? createReferenceRenderer(renderer, reference) : SkyStatus::success();
     if (status.ok())
         status = options.reference
@@ -139,44 +210,8 @@ int runRenderCommand(const RenderCommandOptions& options)
         code = status.result == VK_ERROR_INITIALIZATION_FAILED ? kExitUsage : kExitRuntime;
     }
     else
-    {
-        RenderFacts facts;
-        facts.weatherSource = options.weather;
-        facts.timeIso = formatIso8601Utc(request.unixTimeS);
-        facts.deviceName = renderer.ctx.deviceName;
-        facts.driver = renderer.ctx.driverInfo;
-        facts.quality = qualityToJson(quality);
-        if (options.reference)
-            facts.quality["reference"] = {
-                {"samplesPerPixel", referenceSettings.samplesPerPixel},
-                {"phase", options.referencePhase},
-                {"dropletDiameterUm", referenceSettings.dropletDiameterUm},
-                {"maxScatteringEvents", referenceSettings.maxEvents},
-                {"pathsTruncated", reference.last.pathsTruncated},
-                {"majorantExceeded", reference.last.majorantExceeded},
-                {"pathsCut", reference.last.pathsCut},
-                {"paths", reference.last.paths},
-                {"steps", reference.last.steps},
-                {"stretchesSkipped", reference.last.stretchesSkipped},
-                {"dispatches", reference.last.dispatches},
-                {"maxDispatches", reference.last.maxDispatches},
-                {"seconds", reference.last.seconds}};
-        if (!writeRenderFiles(options.out, request, result, facts, error))
-        {
-            std::fprintf(stderr, "skyservice render: %s\n", error.c_str());
-            code = kExitRuntime;
-        }
-        else
-        {
-            const char* timing = options.reference ? "reference" : "total";
-            std::printf("wrote %s.png %s.exr %s.json (%s %.1f ms)\n", options.out.c_str(), options.out.c_str(),
-                        options.out.c_str(), options.reference ? "path tracing" : "GPU",
-                        result.gpuMs.count(timing) ? result.gpuMs.at(timing) : 0.0);
-            if (result.shadowMapSize > 0)
-                std::printf("wrote %s-shadow.exr %s-shadow.png (GPU %.1f ms)\n", options.out.c_str(),
-                            options.out.c_str(), result.gpuMs.count("shadowMap") ? result.gpuMs.at("shadowMap") : 0.0);
-        }
-    }
+        code = writeRenderOutputs(options, request, result,
+                                  renderFactsOf(renderer, reference, options, request, quality, referenceSettings));
     if (options.common.validate && renderer.ctx.validationMessages.load() > 0)
     {
         std::fprintf(stderr, "skyservice render: %u validation messages\n", renderer.ctx.validationMessages.load());

@@ -248,6 +248,145 @@ std::unique_ptr<WeatherSnapshot> loadGfsSample(const std::string& path, const st
 
 #endif
 
+// The views to render and the forecast the GFS ones point into (null without the sample).
+struct ShowcaseViews
+{
+    std::vector<ShowcaseView> views;
+    std::unique_ptr<WeatherSnapshot> gfs;
+};
+
+// The built-in views, the look sheet's and, when the GFS sample is found and converts, the forecast's.
+ShowcaseViews collectShowcaseViews(const ShowcaseOptions& options)
+{
+    ShowcaseViews out;
+    out.views = builtinViews();
+    for (ShowcaseView& v : lookSheetViews())
+        out.views.push_back(std::move(v));
+#ifdef SKY_HAVE_INGEST
+    const std::string gfsPath = findGfsSample();
+    if (!gfsPath.empty())
+    {
+        std::string snapshotPath;
+        out.gfs = loadGfsSample(gfsPath, options.outDir, snapshotPath);
+        if (out.gfs)
+            for (ShowcaseView& v : gfsViews(*out.gfs, snapshotPath))
+                out.views.push_back(std::move(v));
+    }
+    else
+        std::printf("GFS sample (../shared/weather/%s) not found: built-in weather only\n", kGfsSampleName);
+#else
+    (void)options;
+#endif
+    return out;
+}
+
+// The tiles of the two sheets, in view order, with their captions.
+struct ShowcaseSheets
+{
+    std::vector<ImageRgba8> tiles, lookTiles;
+    std::vector<std::string> captions, lookCaptions;
+};
+
+// Renders one view, writes its files and adds its tile to its sheet; false (with the message printed)
+// when the render or a file fails.
+bool renderShowcaseView(Renderer& renderer, const ShowcaseOptions& options, const QualitySettings& quality,
+                        const ShowcaseView& view, ShowcaseSheets& sheets)
+{
+    ViewRequest request;
+    request.pose = view.pose;
+    request.fovYDeg = view.fovYDeg;
+    request.width = view.look ? std::max(options.width / 2, 8u) : options.width;
+    request.height = view.look ? std::max(options.height / 2, 8u) : options.height;
+    request.unixTimeS = view.unixTimeS;
+    // Some views also write the geo-referenced cloud shadow map (docs/model.md), 150 km wide.
+    request.shadowMap = view.shadowMapSize > 0;
+    request.shadowMapSize = view.shadowMapSize > 0 ? view.shadowMapSize : request.shadowMapSize;
+    request.shadowMapExtentM = 150000.0;
+    setWeather(renderer, view.weather ? *view.weather : makeBuiltinWeather(request.unixTimeS));
+    auto start = std::chrono::steady_clock::now();
+    RenderResult result;
+    const SkyStatus status = renderView(renderer, request, quality, result);
+    if (!status.ok())
+    {
+        std::fprintf(stderr, "skyservice showcase: %s: %s\n", view.name.c_str(), status.message.c_str());
+        return false;
+    }
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    RenderFacts facts;
+    facts.weatherSource = view.weatherSource;
+    facts.timeIso = formatIso8601Utc(view.unixTimeS);
+    facts.deviceName = renderer.ctx.deviceName;
+    facts.driver = renderer.ctx.driverInfo;
+    facts.caption = view.caption;
+    facts.quality = qualityToJson(quality);
+    std::string prefix = options.outDir + "/" + view.name;
+    std::string error;
+    if (!writeRenderFiles(prefix, request, result, facts, error))
+    {
+        std::fprintf(stderr, "skyservice showcase: %s\n", error.c_str());
+        return false;
+    }
+    std::printf("%-20s %s  (sun %.1f deg, %.1f s wall)\n", view.name.c_str(), view.caption.c_str(),
+                result.sunElevationDeg, seconds);
+    std::fflush(stdout);
+    (view.look ? sheets.lookTiles : sheets.tiles).push_back({result.width, result.height, result.displayRgba8});
+    (view.look ? sheets.lookCaptions : sheets.captions).push_back(view.tileCaption);
+    return true;
+}
+
+// Writes one captioned sheet; nothing when it has no tiles. False (with the message printed) when the
+// file fails.
+bool writeSheet(const std::string& outDir, const char* name, const std::vector<ImageRgba8>& sheetTiles,
+                const std::vector<std::string>& sheetCaptions, uint32_t columns)
+{
+    if (sheetTiles.empty())
+        return true;
+    ImageRgba8 sheet = makeContactSheet(sheetTiles, sheetCaptions, columns);
+    std::string error;
+    if (!writePng(outDir + "/" + name, sheet, error))
+    {
+        std::fprintf(stderr, "skyservice showcase: %s\n", error.c_str());
+        return false;
+    }
+    std::printf("wrote %s/%s\n", outDir.c_str(), name);
+    return true;
+}
+
+// Four look views next to the reference path tracer (reference_pairs.h), small: the path tracing is most of the
+// cost (docs/programs.md gives its time on a 2-core CPU).
+bool writeReferencePairs(Renderer& renderer, const QualitySettings& quality, const ShowcaseOptions& options)
+{
+    const std::string path = options.outDir + "/look-reference-pairs.png";
+    const auto start = std::chrono::steady_clock::now();
+    const SkyStatus status = writeLookReferencePairs(renderer, quality, kReferencePairWidth, kReferencePairHeight,
+                                                     options.referenceSpp, path);
+    if (!status.ok())
+    {
+        std::fprintf(stderr, "skyservice showcase: reference pairs: %s\n", status.message.c_str());
+        return false;
+    }
+    std::printf("wrote %s (%.1f s wall)\n", path.c_str(),
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    return true;
+}
+
+// Renders every view, then the sheets and the reference pairs; each step runs only while all before it
+// succeeded.
+int renderShowcase(Renderer& renderer, const ShowcaseOptions& options, const QualitySettings& quality,
+                   const std::vector<ShowcaseView>& views)
+{
+    ShowcaseSheets sheets;
+    for (const ShowcaseView& view : views)
+        if (!renderShowcaseView(renderer, options, quality, view, sheets))
+            return kExitRuntime;
+    if (!writeSheet(options.outDir, "contact-sheet.png", sheets.tiles, sheets.captions, 2) ||
+        !writeSheet(options.outDir, "look-sheet.png", sheets.lookTiles, sheets.lookCaptions, 3))
+        return kExitRuntime;
+    if (options.referenceSpp > 0 && !writeReferencePairs(renderer, quality, options))
+        return kExitRuntime;
+    return kExitOk;
+}
+
 }  // namespace
 
 int runShowcaseCommand(const ShowcaseOptions& options)
@@ -271,108 +410,11 @@ int runShowcaseCommand(const ShowcaseOptions& options)
         return kExitRuntime;
     }
 
-    std::vector<ShowcaseView> views = builtinViews();
-    for (ShowcaseView& v : lookSheetViews())
-        views.push_back(std::move(v));
-#ifdef SKY_HAVE_INGEST
-    std::unique_ptr<WeatherSnapshot> gfs;
-    const std::string gfsPath = findGfsSample();
-    if (!gfsPath.empty())
-    {
-        std::string snapshotPath;
-        gfs = loadGfsSample(gfsPath, options.outDir, snapshotPath);
-        if (gfs)
-            for (ShowcaseView& v : gfsViews(*gfs, snapshotPath))
-                views.push_back(std::move(v));
-    }
-    else
-        std::printf("GFS sample (../shared/weather/%s) not found: built-in weather only\n", kGfsSampleName);
-#endif
-
+    const ShowcaseViews views = collectShowcaseViews(options);
     Renderer renderer;
     if (!startRenderer(options.common, quality.noiseSeed, renderer, "showcase"))
         return kExitRuntime;
-    SkyStatus status;
-
-    std::vector<ImageRgba8> tiles, lookTiles;
-    std::vector<std::string> captions, lookCaptions;
-    int code = kExitOk;
-    for (const ShowcaseView& view : views)
-    {
-        ViewRequest request;
-        request.pose = view.pose;
-        request.fovYDeg = view.fovYDeg;
-        request.width = view.look ? std::max(options.width / 2, 8u) : options.width;
-        request.height = view.look ? std::max(options.height / 2, 8u) : options.height;
-        request.unixTimeS = view.unixTimeS;
-        // Some views also write the geo-referenced cloud shadow map (docs/model.md), 150 km wide.
-        request.shadowMap = view.shadowMapSize > 0;
-        request.shadowMapSize = view.shadowMapSize > 0 ? view.shadowMapSize : request.shadowMapSize;
-        request.shadowMapExtentM = 150000.0;
-        setWeather(renderer, view.weather ? *view.weather : makeBuiltinWeather(request.unixTimeS));
-        auto start = std::chrono::steady_clock::now();
-        RenderResult result;
-        status = renderView(renderer, request, quality, result);
-        if (!status.ok())
-        {
-            std::fprintf(stderr, "skyservice showcase: %s: %s\n", view.name.c_str(), status.message.c_str());
-            code = kExitRuntime;
-            break;
-        }
-        double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        RenderFacts facts;
-        facts.weatherSource = view.weatherSource;
-        facts.timeIso = formatIso8601Utc(view.unixTimeS);
-        facts.deviceName = renderer.ctx.deviceName;
-        facts.driver = renderer.ctx.driverInfo;
-        facts.caption = view.caption;
-        facts.quality = qualityToJson(quality);
-        std::string prefix = options.outDir + "/" + view.name;
-        if (!writeRenderFiles(prefix, request, result, facts, error))
-        {
-            std::fprintf(stderr, "skyservice showcase: %s\n", error.c_str());
-            code = kExitRuntime;
-            break;
-        }
-        std::printf("%-20s %s  (sun %.1f deg, %.1f s wall)\n", view.name.c_str(), view.caption.c_str(),
-                    result.sunElevationDeg, seconds);
-        std::fflush(stdout);
-        (view.look ? lookTiles : tiles).push_back({result.width, result.height, result.displayRgba8});
-        (view.look ? lookCaptions : captions).push_back(view.tileCaption);
-    }
-    auto writeSheet = [&](const char* name, const std::vector<ImageRgba8>& sheetTiles,
-                          const std::vector<std::string>& sheetCaptions, uint32_t columns)
-    {
-        if (code != kExitOk || sheetTiles.empty())
-            return;
-        ImageRgba8 sheet = makeContactSheet(sheetTiles, sheetCaptions, columns);
-        if (!writePng(options.outDir + "/" + name, sheet, error))
-        {
-            std::fprintf(stderr, "skyservice showcase: %s\n", error.c_str());
-            code = kExitRuntime;
-        }
-        else
-            std::printf("wrote %s/%s\n", options.outDir.c_str(), name);
-    };
-    writeSheet("contact-sheet.png", tiles, captions, 2);
-    writeSheet("look-sheet.png", lookTiles, lookCaptions, 3);
-    // Four look views next to the reference path tracer (reference_pairs.h), small: the path tracing is most of the
-    // cost (docs/programs.md gives its time on a 2-core CPU).
-    if (code == kExitOk && options.referenceSpp > 0)
-    {
-        const std::string path = options.outDir + "/look-reference-pairs.png";
-        const auto start = std::chrono::steady_clock::now();
-        status = writeLookReferencePairs(renderer, quality, kReferencePairWidth, kReferencePairHeight,
-                                         options.referenceSpp, path);
-        if (!status.ok())
-        {
-            std::fprintf(stderr, "skyservice showcase: reference pairs: %s\n", status.message.c_str());
-            code = kExitRuntime;
-        }
-        else
-            std::printf("wrote %s (%.1f s wall)\n", path.c_str(),
-                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    }
+    int code = renderShowcase(renderer, options, quality, views.views);
     if (options.common.validate && renderer.ctx.validationMessages.load() > 0)
         code = kExitRuntime;
     destroyRenderer(renderer);

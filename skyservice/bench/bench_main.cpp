@@ -219,16 +219,11 @@ void fillDevice(const Renderer& r, BenchRun& run)
     }
 }
 
-int runBench(const BenchOptions& o)
+// The shipped settings with the command line's overrides (the requests copy nothing back while timed:
+// runScene).
+QualitySettings benchQuality(const BenchOptions& o)
 {
-    std::vector<BenchScene> scenes;
-    std::string error;
-    if (!selectBenchScenes(o.scene, scenes, error))
-    {
-        std::fprintf(stderr, "sky-bench: --scene %s: %s\n", o.scene.c_str(), error.c_str());
-        return kExitUsage;
-    }
-    QualitySettings quality;  // the shipped defaults (the requests copy nothing back while timed: runScene)
+    QualitySettings quality;
     quality.accumulationFrames = o.gpuFrames;
     // Reprojected: every call is one frame of the temporal loop (march 1/16, reconstruct, composite),
     // reusing the previous call's image; --gpu-frames does not apply (a frame needs the one before).
@@ -237,13 +232,27 @@ int runBench(const BenchOptions& o)
         quality.accumulationFrames = 1;
     if (o.steps > 0)
         quality.maxViewSteps = o.steps;
-    RenderTuning tuning;  // the experiment knobs (render_tuning.h)
-    if (o.lightLodM >= 0)
-        tuning.lightLodDistanceM = o.lightLodM;
     if (o.lightSamples >= 0)
         quality.lightSamples = uint32_t(o.lightSamples);
     if (o.noDetail)
         quality.detail = false;
+    if (o.octaves >= 0)
+        quality.octaves = uint32_t(o.octaves);
+    if (o.fullConeSamples >= 0)
+        quality.fullConeSamples = uint32_t(o.fullConeSamples);
+    if (o.lightVolumeTexelM >= 0)
+        quality.lightVolumeTexelM = o.lightVolumeTexelM;
+    if (o.lightVolumeMinRays >= 0)
+        quality.lightVolumeMinRays = uint32_t(o.lightVolumeMinRays);
+    return quality;
+}
+
+// The experiment knobs (render_tuning.h) with the command line's overrides.
+RenderTuning benchTuning(const BenchOptions& o)
+{
+    RenderTuning tuning;
+    if (o.lightLodM >= 0)
+        tuning.lightLodDistanceM = o.lightLodM;
     if (o.noCostOrder)
         tuning.costOrderedMarch = false;
     if (o.lookupTotals)
@@ -254,20 +263,12 @@ int runBench(const BenchOptions& o)
         tuning.coneTailReuseBeyondM = o.coneTailReuseBeyondM;
     if (o.deepLightReuseM >= 0)
         tuning.deepLightReuseM = o.deepLightReuseM;
-    if (o.octaves >= 0)
-        quality.octaves = uint32_t(o.octaves);
     if (o.coneNearMergeBeyondM >= 0)
         tuning.coneNearMergeBeyondM = o.coneNearMergeBeyondM;
     if (o.noSkipping)
         tuning.emptySpaceSkipping = false;
     if (o.noFarLightVolume)
         tuning.lightVolumeFarCascade = false;
-    if (o.fullConeSamples >= 0)
-        quality.fullConeSamples = uint32_t(o.fullConeSamples);
-    if (o.lightVolumeTexelM >= 0)
-        quality.lightVolumeTexelM = o.lightVolumeTexelM;
-    if (o.lightVolumeMinRays >= 0)
-        quality.lightVolumeMinRays = uint32_t(o.lightVolumeMinRays);
     if (o.detailMinTransmittance >= 0)
         tuning.detailMinTransmittance = o.detailMinTransmittance;
     if (o.deepStepFactor >= 0)
@@ -280,6 +281,77 @@ int runBench(const BenchOptions& o)
         tuning.detailFadeStartM = o.detailFadeStartM;
     if (o.detailFadeEndM >= 0)
         tuning.detailFadeEndM = o.detailFadeEndM;
+    return tuning;
+}
+
+// Runs the scenes in order, stopping at the first that fails; each adds its result, its contact-sheet
+// caption and (with --sheet) its tile.
+SkyStatus runScenes(Renderer& r, const BenchOptions& o, const std::vector<BenchScene>& scenes,
+                    const QualitySettings& quality, BenchRun& run, std::vector<ImageRgba8>& tiles,
+                    std::vector<std::string>& captions)
+{
+    SkyStatus status = SkyStatus::success();
+    for (size_t i = 0; status.ok() && i < scenes.size(); ++i)
+    {
+        auto start = std::chrono::steady_clock::now();
+        std::string startUtc = utcClock();
+        run.scenes.emplace_back();
+        status = runScene(r, o, scenes[i], quality, run.scenes.back(), tiles);
+        captions.push_back(scenes[i].name);
+        // UTC start and end, to line up with an external clock log (nvidia-smi --query-gpu=timestamp,...).
+        std::fprintf(stderr, "sky-bench: %-19s %ux%u done in %.1f s (UTC %s..%s)\n", scenes[i].name.c_str(), o.width,
+                     o.height, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                     startUtc.c_str(), utcClock().c_str());
+    }
+    return status;
+}
+
+// The memory report and the run's settings, for the table and the JSON.
+void recordRunSettings(Renderer& r, const BenchOptions& o, const QualitySettings& quality, const RenderTuning& tuning,
+                       BenchRun& run)
+{
+    {
+        std::lock_guard<std::mutex> lock(r.memory.mutex);
+        run.memory.liveBytes.insert(r.memory.liveBytes.begin(), r.memory.liveBytes.end());
+        run.memory.totalBytes = r.memory.totalBytes;
+        run.memory.peakBytes = r.memory.peakBytes;
+    }
+    run.width = o.width;
+    run.height = o.height;
+    run.frames = o.frames;
+    run.warmup = o.warmup;
+    run.gpuFramesPerCall = o.gpuFrames;
+    run.mode = o.mode;
+    run.speedMps = o.speedMps;
+    run.quality = qualityJson(quality, tuning);
+}
+
+// Writes --json, then --sheet; the exit code, with the message printed on failure.
+int writeBenchFiles(const BenchOptions& o, const BenchRun& run, const std::vector<ImageRgba8>& tiles,
+                    const std::vector<std::string>& captions)
+{
+    std::string error;
+    int code = kExitOk;
+    if (!o.json.empty() && !writeJsonAtomic(o.json, benchToJson(run), error))
+        code = kExitRuntime;
+    if (code == kExitOk && !o.sheet.empty() && !writePng(o.sheet, makeContactSheet(tiles, captions, 2), error))
+        code = kExitRuntime;
+    if (code != kExitOk)
+        std::fprintf(stderr, "sky-bench: %s\n", error.c_str());
+    return code;
+}
+
+int runBench(const BenchOptions& o)
+{
+    std::vector<BenchScene> scenes;
+    std::string error;
+    if (!selectBenchScenes(o.scene, scenes, error))
+    {
+        std::fprintf(stderr, "sky-bench: --scene %s: %s\n", o.scene.c_str(), error.c_str());
+        return kExitUsage;
+    }
+    const QualitySettings quality = benchQuality(o);
+    const RenderTuning tuning = benchTuning(o);
 
     Renderer r;
     RendererOptions ro;
@@ -297,18 +369,7 @@ int runBench(const BenchOptions& o)
         if (r.ctx.timestampPeriodNs <= 0)
             std::fprintf(stderr, "sky-bench: %s has no timestamps on its compute queue: GPU columns stay empty\n",
                          run.deviceName.c_str());
-    }
-    for (size_t i = 0; status.ok() && i < scenes.size(); ++i)
-    {
-        auto start = std::chrono::steady_clock::now();
-        std::string startUtc = utcClock();
-        run.scenes.emplace_back();
-        status = runScene(r, o, scenes[i], quality, run.scenes.back(), tiles);
-        captions.push_back(scenes[i].name);
-        // UTC start and end, to line up with an external clock log (nvidia-smi --query-gpu=timestamp,...).
-        std::fprintf(stderr, "sky-bench: %-19s %ux%u done in %.1f s (UTC %s..%s)\n", scenes[i].name.c_str(), o.width,
-                     o.height, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                     startUtc.c_str(), utcClock().c_str());
+        status = runScenes(r, o, scenes, quality, run, tiles, captions);
     }
     if (!status.ok())
     {
@@ -316,29 +377,10 @@ int runBench(const BenchOptions& o)
         destroyRenderer(r);
         return kExitRuntime;
     }
-    {
-        std::lock_guard<std::mutex> lock(r.memory.mutex);
-        run.memory.liveBytes.insert(r.memory.liveBytes.begin(), r.memory.liveBytes.end());
-        run.memory.totalBytes = r.memory.totalBytes;
-        run.memory.peakBytes = r.memory.peakBytes;
-    }
-    run.width = o.width;
-    run.height = o.height;
-    run.frames = o.frames;
-    run.warmup = o.warmup;
-    run.gpuFramesPerCall = o.gpuFrames;
-    run.mode = o.mode;
-    run.speedMps = o.speedMps;
-    run.quality = qualityJson(quality, tuning);
+    recordRunSettings(r, o, quality, tuning, run);
     printBenchTable(stdout, run);
 
-    int code = kExitOk;
-    if (!o.json.empty() && !writeJsonAtomic(o.json, benchToJson(run), error))
-        code = kExitRuntime;
-    if (code == kExitOk && !o.sheet.empty() && !writePng(o.sheet, makeContactSheet(tiles, captions, 2), error))
-        code = kExitRuntime;
-    if (code != kExitOk)
-        std::fprintf(stderr, "sky-bench: %s\n", error.c_str());
+    int code = writeBenchFiles(o, run, tiles, captions);
     if (o.validate && r.ctx.validationMessages.load() > 0)
     {
         std::fprintf(stderr, "sky-bench: %u validation messages\n", r.ctx.validationMessages.load());

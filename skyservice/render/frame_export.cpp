@@ -369,10 +369,13 @@ void destroyFrameExport(Renderer& r, FrameExport& e)
     e = FrameExport{};
 }
 
-SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frameId, const RenderResult& frame,
-                      uint32_t layers)
+namespace
 {
-    const Context& ctx = r.ctx;
+
+// Checks the slot, the frame id and the frame's images against the export before anything is recorded.
+SkyStatus checkExportRequest(const Renderer& r, const FrameExport& e, uint32_t slot, uint64_t frameId,
+                             const RenderResult& frame)
+{
     if (slot >= e.slots)
         return SkyStatus::failure("frame export: slot " + std::to_string(slot) + " of " + std::to_string(e.slots),
                                   VK_ERROR_UNKNOWN);
@@ -393,57 +396,59 @@ SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frame
                                   VK_ERROR_UNKNOWN);
     if (e.timeline && frameId <= e.lastSignalled)
         return SkyStatus::failure("frame export: frame ids must increase (timeline semaphore)", VK_ERROR_UNKNOWN);
-    std::array<CopyJob, kMaxCopyJobs> jobs;
-    uint32_t jobCount = 0;
-    jobs[jobCount++] = {r.composite.displayImage.image, &e.frames[slot], frame.width, frame.height, false};
-    if (shadowSize > 0)  // the shadow pass writes rgba16f: its red channel (transmittance) is blitted
-        jobs[jobCount++] = {r.shadowPass.image.image, &e.shadows[slot], shadowSize, shadowSize, true};
-    SKY_TRY(layerCopies(r, e, slot, layers, frame, jobs.data(), jobCount));
-    SKY_TRY(waitSlot(ctx, e, slot));
+    return SkyStatus::success();
+}
 
-    VkCommandBuffer cmd = e.commands[slot];
-    VK_TRY(vkResetCommandBuffer(cmd, 0));
-    VkCommandBufferBeginInfo begin = {VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VK_TRY(vkBeginCommandBuffer(cmd, &begin));
+// The four barrier batches around the copies, in the order they are recorded.
+struct CopyBarriers
+{
+    BarrierList acquire, toTransfer, toGeneral, release;
+};
 
-    // Ownership of the exported images: they are handed to the importers (VK_QUEUE_FAMILY_EXTERNAL) in
-    // GENERAL layout after each copy and taken back before the next; layout changes are separate barriers
-    // so that release and acquire never transition (the importers acquire GENERAL -> GENERAL).
-    const uint32_t family = ctx.queueFamily, external = VK_QUEUE_FAMILY_EXTERNAL, ignored = VK_QUEUE_FAMILY_IGNORED;
+// Ownership of the exported images: they are handed to the importers (VK_QUEUE_FAMILY_EXTERNAL) in
+// GENERAL layout after each copy and taken back before the next; layout changes are separate barriers
+// so that release and acquire never transition (the importers acquire GENERAL -> GENERAL). Marks every
+// target as in GENERAL layout from now on.
+CopyBarriers copyBarriers(uint32_t family, const CopyJob* jobs, uint32_t jobCount)
+{
+    const uint32_t external = VK_QUEUE_FAMILY_EXTERNAL, ignored = VK_QUEUE_FAMILY_IGNORED;
     const VkPipelineStageFlags2 transfer = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, all = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
     const VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL, srcOpt = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                         dstOpt = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    BarrierList acquire, toTransfer, toGeneral, release;
+    CopyBarriers b;
     for (uint32_t i = 0; i < jobCount; ++i)
     {
         const CopyJob& p = jobs[i];
         // The renderer's images: its last writes (compute, transfer) before our reads.
-        toTransfer.add(imageBarrier(p.source, {all, VK_ACCESS_2_MEMORY_WRITE_BIT, general, ignored},
-                                    {transfer, VK_ACCESS_2_TRANSFER_READ_BIT, srcOpt, ignored}));
+        b.toTransfer.add(imageBarrier(p.source, {all, VK_ACCESS_2_MEMORY_WRITE_BIT, general, ignored},
+                                      {transfer, VK_ACCESS_2_TRANSFER_READ_BIT, srcOpt, ignored}));
         // Our reads before the renderer's next writes (write-after-read on the same queue).
-        toGeneral.add(imageBarrier(p.source, {transfer, VK_ACCESS_2_NONE, srcOpt, ignored},
-                                   {all, VK_ACCESS_2_NONE, general, ignored}));
+        b.toGeneral.add(imageBarrier(p.source, {transfer, VK_ACCESS_2_NONE, srcOpt, ignored},
+                                     {all, VK_ACCESS_2_NONE, general, ignored}));
         if (p.target->general)
         {
-            acquire.add(imageBarrier(p.target->image, {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, general, external},
-                                     {transfer, VK_ACCESS_2_NONE, general, family}));
-            toTransfer.add(imageBarrier(p.target->image, {transfer, VK_ACCESS_2_NONE, general, ignored},
-                                        {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored}));
+            b.acquire.add(imageBarrier(p.target->image, {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, general, external},
+                                       {transfer, VK_ACCESS_2_NONE, general, family}));
+            b.toTransfer.add(imageBarrier(p.target->image, {transfer, VK_ACCESS_2_NONE, general, ignored},
+                                          {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored}));
         }
         else  // first use: nothing to keep, nothing owned elsewhere yet
-            toTransfer.add(imageBarrier(p.target->image, {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
-                                                          VK_IMAGE_LAYOUT_UNDEFINED, ignored},
-                                        {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored}));
+            b.toTransfer.add(imageBarrier(p.target->image, {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                                                            VK_IMAGE_LAYOUT_UNDEFINED, ignored},
+                                          {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored}));
         p.target->general = true;
-        toGeneral.add(imageBarrier(p.target->image, {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored},
-                                   {all, VK_ACCESS_2_MEMORY_READ_BIT, general, ignored}));
-        release.add(imageBarrier(p.target->image, {all, VK_ACCESS_2_NONE, general, family},
-                                 {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, general, external}));
+        b.toGeneral.add(imageBarrier(p.target->image, {transfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstOpt, ignored},
+                                     {all, VK_ACCESS_2_MEMORY_READ_BIT, general, ignored}));
+        b.release.add(imageBarrier(p.target->image, {all, VK_ACCESS_2_NONE, general, family},
+                                   {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, general, external}));
     }
+    return b;
+}
 
-    acquire.record(cmd);
-    toTransfer.record(cmd);
+// Records each job's copy, sources in TRANSFER_SRC and targets in TRANSFER_DST layout.
+void recordCopies(VkCommandBuffer cmd, const CopyJob* jobs, uint32_t jobCount)
+{
+    const VkImageLayout srcOpt = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dstOpt = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
     for (uint32_t i = 0; i < jobCount; ++i)
     {
         const CopyJob& p = jobs[i];
@@ -464,10 +469,11 @@ SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frame
         copy.extent = {p.width, p.height, 1};
         vkCmdCopyImage(cmd, p.source, srcOpt, p.target->image, dstOpt, 1, &copy);
     }
-    toGeneral.record(cmd);
-    release.record(cmd);
-    VK_TRY(vkEndCommandBuffer(cmd));
+}
 
+// Submits the slot's commands, signalling the timeline at frameId where there is one.
+SkyStatus submitCopies(const Context& ctx, FrameExport& e, uint32_t slot, VkCommandBuffer cmd, uint64_t frameId)
+{
     VkTimelineSemaphoreSubmitInfo timelineInfo = {VK_STRUCTURE_TYPE_TIMELINE_SEMAPHORE_SUBMIT_INFO};
     timelineInfo.signalSemaphoreValueCount = 1;
     timelineInfo.pSignalSemaphoreValues = &frameId;
@@ -482,6 +488,39 @@ SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frame
     }
     VK_TRY(vkQueueSubmit(ctx.queue, 1, &submit, e.fences[slot]));
     e.fencePending[slot] = true;
+    return SkyStatus::success();
+}
+
+}  // namespace
+
+SkyStatus exportFrame(Renderer& r, FrameExport& e, uint32_t slot, uint64_t frameId, const RenderResult& frame,
+                      uint32_t layers)
+{
+    const Context& ctx = r.ctx;
+    SKY_TRY(checkExportRequest(r, e, slot, frameId, frame));
+    const uint32_t shadowSize = frame.shadowMapSize;
+    std::array<CopyJob, kMaxCopyJobs> jobs;
+    uint32_t jobCount = 0;
+    jobs[jobCount++] = {r.composite.displayImage.image, &e.frames[slot], frame.width, frame.height, false};
+    if (shadowSize > 0)  // the shadow pass writes rgba16f: its red channel (transmittance) is blitted
+        jobs[jobCount++] = {r.shadowPass.image.image, &e.shadows[slot], shadowSize, shadowSize, true};
+    SKY_TRY(layerCopies(r, e, slot, layers, frame, jobs.data(), jobCount));
+    SKY_TRY(waitSlot(ctx, e, slot));
+
+    VkCommandBuffer cmd = e.commands[slot];
+    VK_TRY(vkResetCommandBuffer(cmd, 0));
+    VkCommandBufferBeginInfo begin = {VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_TRY(vkBeginCommandBuffer(cmd, &begin));
+    const CopyBarriers barriers = copyBarriers(ctx.queueFamily, jobs.data(), jobCount);
+    barriers.acquire.record(cmd);
+    barriers.toTransfer.record(cmd);
+    recordCopies(cmd, jobs.data(), jobCount);
+    barriers.toGeneral.record(cmd);
+    barriers.release.record(cmd);
+    VK_TRY(vkEndCommandBuffer(cmd));
+
+    SKY_TRY(submitCopies(ctx, e, slot, cmd, frameId));
     if (e.timeline)
     {
         e.lastSignalled = frameId;

@@ -146,9 +146,9 @@ CloudLayerFields makeLayer(const char* name, size_t cells)
     return layer;
 }
 
-}  // namespace
-
-WeatherSnapshot makeBuiltinWeather(int64_t validTimeUnixS)
+// A snapshot on the built-in grid with every field allocated and at its background value (no cloud,
+// the background CAPE, the fixed tropopause).
+WeatherSnapshot emptyBuiltinSnapshot(int64_t validTimeUnixS)
 {
     WeatherSnapshot snapshot;
     snapshot.grid.lat0Deg = kGridLat0Deg;
@@ -164,9 +164,6 @@ WeatherSnapshot makeBuiltinWeather(int64_t validTimeUnixS)
     snapshot.layers.push_back(makeLayer("low", cells));
     snapshot.layers.push_back(makeLayer("middle", cells));
     snapshot.layers.push_back(makeLayer("convective", cells));
-    CloudLayerFields& low = snapshot.layers[0];
-    CloudLayerFields& middle = snapshot.layers[1];
-    CloudLayerFields& convective = snapshot.layers[2];
     HighCloudFields& high = snapshot.high;
     high.coverage.assign(cells, 0.0f);
     high.altitudeM.assign(cells, kBuiltinCirrusAltitudeM);
@@ -175,20 +172,109 @@ WeatherSnapshot makeBuiltinWeather(int64_t validTimeUnixS)
     high.windNorthMS.assign(cells, 0.0f);
     snapshot.capeJKg.assign(cells, kBuiltinBackgroundCapeJKg);
     snapshot.tropopauseAltitudeM.assign(cells, kBuiltinTropopauseM);
+    return snapshot;
+}
 
-    float lowWindE = 0, lowWindN = 0, midWindE = 0, midWindN = 0, cbWindE = 0, cbWindN = 0, hiWindE = 0,
-          hiWindN = 0;
-    windFrom(225.0, 6.0, lowWindE, lowWindN);    // south-west
-    windFrom(247.5, 15.0, midWindE, midWindN);   // west-south-west
-    windFrom(270.0, 25.0, cbWindE, cbWindN);     // west
-    windFrom(247.5, 30.0, hiWindE, hiWindN);     // west-south-west
+struct Wind
+{
+    float eastMS = 0, northMS = 0;
+};
 
-    GeographicLib::LocalCartesian cellCentre(kBuiltinCumulonimbusLatDeg, kBuiltinCumulonimbusLonDeg, 0.0);
+// One wind per layer, the same in every cell.
+struct BuiltinWinds
+{
+    Wind low, middle, convective, high;
+};
+
+BuiltinWinds builtinWinds()
+{
+    BuiltinWinds w;
+    windFrom(225.0, 6.0, w.low.eastMS, w.low.northMS);                // south-west
+    windFrom(247.5, 15.0, w.middle.eastMS, w.middle.northMS);         // west-south-west
+    windFrom(270.0, 25.0, w.convective.eastMS, w.convective.northMS); // west
+    windFrom(247.5, 30.0, w.high.eastMS, w.high.northMS);             // west-south-west
+    return w;
+}
+
+// The low layer: the stratocumulus deck west of the split, the cumulus field east of it.
+void fillLowCell(CloudLayerFields& low, size_t c, const CellKm& cell, const Wind& wind)
+{
+    // Lon 5.25 E lies midway between the deck and the cumulus field, where both are clear.
+    constexpr double kDeckCumulusSplitLonDeg = 5.25;
+    if (cell.lonDeg < kDeckCumulusSplitLonDeg)
+    {
+        low.coverage[c] = float(regionCoverage(kDeck, cell, 0.90, 0.04));
+        low.baseAltitudeM[c] = kBuiltinDeckBaseM;
+        low.topAltitudeM[c] = kBuiltinDeckTopM;
+        low.type[c] = uint8_t(CloudType::Stratocumulus);
+    }
+    else
+    {
+        low.coverage[c] = float(regionCoverage(kCumulus, cell, 0.40, 0.04));
+        low.baseAltitudeM[c] = kBuiltinCumulusBaseM;
+        low.topAltitudeM[c] = kBuiltinCumulusTopM;
+        low.type[c] = uint8_t(CloudType::Cumulus);
+    }
+    low.windEastMS[c] = wind.eastMS;
+    low.windNorthMS[c] = wind.northMS;
+}
+
+void fillMiddleCell(CloudLayerFields& middle, size_t c, const CellKm& cell, const Wind& wind)
+{
+    middle.coverage[c] = float(regionCoverage(kAltocumulus, cell, 0.50, 0.05));
+    middle.baseAltitudeM[c] = kBuiltinAltocumulusBaseM;
+    middle.topAltitudeM[c] = kBuiltinAltocumulusTopM;
+    middle.type[c] = uint8_t(CloudType::Altocumulus);
+    middle.windEastMS[c] = wind.eastMS;
+    middle.windNorthMS[c] = wind.northMS;
+}
+
+// The cumulonimbus around cellCentre, and the CAPE that peaks under it.
+void fillConvectiveCell(CloudLayerFields& convective, float& capeJKg, size_t c, const CellKm& cell,
+                        const GeographicLib::LocalCartesian& cellCentre, const Wind& wind)
+{
     // CAPE falls from the cell's value to the background over this distance from its centre.
     constexpr double kCapeInnerM = 5000.0;
     constexpr double kCapeOuterM = 60000.0;
-    // Lon 5.25 E lies midway between the deck and the cumulus field, where both are clear.
-    constexpr double kDeckCumulusSplitLonDeg = 5.25;
+    double distanceM = std::numeric_limits<double>::infinity();
+    if (std::abs(cell.latDeg - kBuiltinCumulonimbusLatDeg) < 1.0 &&
+        std::abs(cell.lonDeg - kBuiltinCumulonimbusLonDeg) < 1.5)
+    {
+        double x = 0, y = 0, z = 0;
+        cellCentre.Forward(cell.latDeg, cell.lonDeg, 0.0, x, y, z);
+        distanceM = std::hypot(x, y);
+    }
+    const double cbCoverage =
+        1.0 - smoothstep(kBuiltinCumulonimbusCoreRadiusM, kBuiltinCumulonimbusRadiusM, distanceM);
+    convective.coverage[c] = float(cbCoverage);
+    convective.baseAltitudeM[c] = kBuiltinCumulonimbusBaseM;
+    convective.topAltitudeM[c] = kBuiltinCumulonimbusTopM;
+    convective.type[c] = uint8_t(CloudType::Cumulonimbus);
+    convective.precipitationMmH[c] = float(cbCoverage) * kBuiltinCumulonimbusPrecipitationMmH;
+    convective.windEastMS[c] = wind.eastMS;
+    convective.windNorthMS[c] = wind.northMS;
+    const double capeWeight = 1.0 - smoothstep(kCapeInnerM, kCapeOuterM, distanceM);
+    capeJKg = float(double(kBuiltinBackgroundCapeJKg) +
+                    capeWeight * double(kBuiltinCumulonimbusCapeJKg - kBuiltinBackgroundCapeJKg));
+}
+
+void fillHighCell(HighCloudFields& high, size_t c, const CellKm& cell, const Wind& wind)
+{
+    high.coverage[c] = float(regionCoverage(kCirrus, cell, 0.50, 0.08));
+    high.windEastMS[c] = wind.eastMS;
+    high.windNorthMS[c] = wind.northMS;
+}
+
+}  // namespace
+
+WeatherSnapshot makeBuiltinWeather(int64_t validTimeUnixS)
+{
+    WeatherSnapshot snapshot = emptyBuiltinSnapshot(validTimeUnixS);
+    CloudLayerFields& low = snapshot.layers[0];
+    CloudLayerFields& middle = snapshot.layers[1];
+    CloudLayerFields& convective = snapshot.layers[2];
+    const BuiltinWinds winds = builtinWinds();
+    const GeographicLib::LocalCartesian cellCentre(kBuiltinCumulonimbusLatDeg, kBuiltinCumulonimbusLonDeg, 0.0);
 
     for (uint32_t iLat = 0; iLat < kGridRows; ++iLat)
     {
@@ -202,55 +288,10 @@ WeatherSnapshot makeBuiltinWeather(int64_t validTimeUnixS)
             cell.lonDeg = kGridLon0Deg + double(iLon) * kGridStepDeg;
             cell.xKm = (cell.lonDeg - kGridLon0Deg) * cell.kmPerDegLon;
             const size_t c = snapshot.grid.index(iLat, iLon);
-
-            if (cell.lonDeg < kDeckCumulusSplitLonDeg)
-            {
-                low.coverage[c] = float(regionCoverage(kDeck, cell, 0.90, 0.04));
-                low.baseAltitudeM[c] = kBuiltinDeckBaseM;
-                low.topAltitudeM[c] = kBuiltinDeckTopM;
-                low.type[c] = uint8_t(CloudType::Stratocumulus);
-            }
-            else
-            {
-                low.coverage[c] = float(regionCoverage(kCumulus, cell, 0.40, 0.04));
-                low.baseAltitudeM[c] = kBuiltinCumulusBaseM;
-                low.topAltitudeM[c] = kBuiltinCumulusTopM;
-                low.type[c] = uint8_t(CloudType::Cumulus);
-            }
-            low.windEastMS[c] = lowWindE;
-            low.windNorthMS[c] = lowWindN;
-
-            middle.coverage[c] = float(regionCoverage(kAltocumulus, cell, 0.50, 0.05));
-            middle.baseAltitudeM[c] = kBuiltinAltocumulusBaseM;
-            middle.topAltitudeM[c] = kBuiltinAltocumulusTopM;
-            middle.type[c] = uint8_t(CloudType::Altocumulus);
-            middle.windEastMS[c] = midWindE;
-            middle.windNorthMS[c] = midWindN;
-
-            double distanceM = std::numeric_limits<double>::infinity();
-            if (std::abs(cell.latDeg - kBuiltinCumulonimbusLatDeg) < 1.0 &&
-                std::abs(cell.lonDeg - kBuiltinCumulonimbusLonDeg) < 1.5)
-            {
-                double x = 0, y = 0, z = 0;
-                cellCentre.Forward(cell.latDeg, cell.lonDeg, 0.0, x, y, z);
-                distanceM = std::hypot(x, y);
-            }
-            const double cbCoverage =
-                1.0 - smoothstep(kBuiltinCumulonimbusCoreRadiusM, kBuiltinCumulonimbusRadiusM, distanceM);
-            convective.coverage[c] = float(cbCoverage);
-            convective.baseAltitudeM[c] = kBuiltinCumulonimbusBaseM;
-            convective.topAltitudeM[c] = kBuiltinCumulonimbusTopM;
-            convective.type[c] = uint8_t(CloudType::Cumulonimbus);
-            convective.precipitationMmH[c] = float(cbCoverage) * kBuiltinCumulonimbusPrecipitationMmH;
-            convective.windEastMS[c] = cbWindE;
-            convective.windNorthMS[c] = cbWindN;
-            const double capeWeight = 1.0 - smoothstep(kCapeInnerM, kCapeOuterM, distanceM);
-            snapshot.capeJKg[c] = float(double(kBuiltinBackgroundCapeJKg) +
-                                        capeWeight * double(kBuiltinCumulonimbusCapeJKg - kBuiltinBackgroundCapeJKg));
-
-            high.coverage[c] = float(regionCoverage(kCirrus, cell, 0.50, 0.08));
-            high.windEastMS[c] = hiWindE;
-            high.windNorthMS[c] = hiWindN;
+            fillLowCell(low, c, cell, winds.low);
+            fillMiddleCell(middle, c, cell, winds.middle);
+            fillConvectiveCell(convective, snapshot.capeJKg[c], c, cell, cellCentre, winds.convective);
+            fillHighCell(snapshot.high, c, cell, winds.high);
         }
     }
     return snapshot;

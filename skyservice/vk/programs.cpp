@@ -95,20 +95,98 @@ uint32_t typeSize(const std::vector<Id>& ids, uint32_t type, uint32_t matrixStri
     }
 }
 
-}  // namespace
-
-bool reflectSpirv(const std::vector<uint32_t>& words, ShaderInterface& out, std::string& error)
+// What one pass over the module's instructions records: every id's declaration and decorations, the
+// variables in declaration order, and the LocalSizeId constants still to be resolved.
+struct ParsedModule
 {
-    out = ShaderInterface{};
-    if (words.size() < 5 || words[0] != 0x07230203)
-    {
-        error = "not a SPIR-V module (bad magic number)";
-        return false;
-    }
-    uint32_t bound = words[3];
-    std::vector<Id> ids(bound);
+    uint32_t bound = 0;
+    std::vector<Id> ids;
     std::vector<uint32_t> variables;
     uint32_t localSizeIds[3] = {0, 0, 0};
+};
+
+// Records one OpDecorate on its target id.
+void recordDecoration(const uint32_t* op, uint32_t nops, ParsedModule& module)
+{
+    if (nops < 2 || op[0] >= module.bound)
+        return;
+    Id& id = module.ids[op[0]];
+    if (op[1] == DecorationBinding && nops >= 3)
+        id.binding = int(op[2]);
+    else if (op[1] == DecorationDescriptorSet && nops >= 3)
+        id.set = int(op[2]);
+    else if (op[1] == DecorationBlock)
+        id.block = true;
+    else if (op[1] == DecorationBufferBlock)
+        id.bufferBlock = true;
+    else if (op[1] == DecorationArrayStride && nops >= 3)
+        id.arrayStride = op[2];
+}
+
+// Records one instruction. OpExecutionMode's literal local size goes straight to out.
+void recordInstruction(uint32_t opcode, const uint32_t* op, uint32_t nops, ParsedModule& module,
+                       ShaderInterface& out)
+{
+    switch (opcode)
+    {
+    case OpExecutionMode:
+        if (nops >= 5 && op[1] == ExecutionModeLocalSize)
+            out.localSize[0] = op[2], out.localSize[1] = op[3], out.localSize[2] = op[4];
+        break;
+    case OpExecutionModeId:
+        // SPIR-V 1.6 (Vulkan 1.3 target) states the local size by constant ids.
+        if (nops >= 5 && op[1] == ExecutionModeLocalSizeId)
+            module.localSizeIds[0] = op[2], module.localSizeIds[1] = op[3], module.localSizeIds[2] = op[4];
+        break;
+    case OpDecorate:
+        recordDecoration(op, nops, module);
+        break;
+    case OpMemberDecorate:
+        if (nops >= 4 && op[0] < module.bound)
+        {
+            if (op[2] == DecorationOffset)
+                module.ids[op[0]].memberOffsets[op[1]] = op[3];
+            else if (op[2] == DecorationMatrixStride)
+                module.ids[op[0]].memberMatrixStride[op[1]] = op[3];
+        }
+        break;
+    case OpTypeInt:
+    case OpTypeFloat:
+    case OpTypeVector:
+    case OpTypeMatrix:
+    case OpTypeImage:
+    case OpTypeSampler:
+    case OpTypeSampledImage:
+    case OpTypeArray:
+    case OpTypeStruct:
+    case OpTypePointer:
+        if (nops >= 1 && op[0] < module.bound)
+        {
+            module.ids[op[0]].opcode = opcode;
+            module.ids[op[0]].operands.assign(op, op + nops);
+        }
+        break;
+    case OpConstant:
+    case OpVariable:
+        if (nops >= 2 && op[1] < module.bound)
+        {
+            module.ids[op[1]].opcode = opcode;
+            module.ids[op[1]].operands.assign(op, op + nops);
+            if (opcode == OpVariable)
+                module.variables.push_back(op[1]);
+        }
+        break;
+    default:
+        break;
+    }
+}
+
+// Walks the instructions after the five-word header.
+bool parseInstructions(const std::vector<uint32_t>& words, ParsedModule& module, ShaderInterface& out,
+                       std::string& error)
+{
+    module.bound = words[3];
+    module.ids.resize(module.bound);
     for (size_t i = 5; i < words.size();)
     {
         uint32_t opcode = words[i] & 0xffff;
@@ -118,90 +196,55 @@ bool reflectSpirv(const std::vector<uint32_t>& words, ShaderInterface& out, std:
             error = "truncated SPIR-V instruction";
             return false;
         }
-        const uint32_t* op = &words[i + 1];
-        uint32_t nops = count - 1;
-        switch (opcode)
-        {
-        case OpExecutionMode:
-            if (nops >= 5 && op[1] == ExecutionModeLocalSize)
-                out.localSize[0] = op[2], out.localSize[1] = op[3], out.localSize[2] = op[4];
-            break;
-        case OpExecutionModeId:
-            // SPIR-V 1.6 (Vulkan 1.3 target) states the local size by constant ids.
-            if (nops >= 5 && op[1] == ExecutionModeLocalSizeId)
-                localSizeIds[0] = op[2], localSizeIds[1] = op[3], localSizeIds[2] = op[4];
-            break;
-        case OpDecorate:
-            if (nops >= 2 && op[0] < bound)
-            {
-                Id& id = ids[op[0]];
-                if (op[1] == DecorationBinding && nops >= 3)
-                    id.binding = int(op[2]);
-                else if (op[1] == DecorationDescriptorSet && nops >= 3)
-                    id.set = int(op[2]);
-                else if (op[1] == DecorationBlock)
-                    id.block = true;
-                else if (op[1] == DecorationBufferBlock)
-                    id.bufferBlock = true;
-                else if (op[1] == DecorationArrayStride && nops >= 3)
-                    id.arrayStride = op[2];
-            }
-            break;
-        case OpMemberDecorate:
-            if (nops >= 4 && op[0] < bound)
-            {
-                if (op[2] == DecorationOffset)
-                    ids[op[0]].memberOffsets[op[1]] = op[3];
-                else if (op[2] == DecorationMatrixStride)
-                    ids[op[0]].memberMatrixStride[op[1]] = op[3];
-            }
-            break;
-        case OpTypeInt:
-        case OpTypeFloat:
-        case OpTypeVector:
-        case OpTypeMatrix:
-        case OpTypeImage:
-        case OpTypeSampler:
-        case OpTypeSampledImage:
-        case OpTypeArray:
-        case OpTypeStruct:
-        case OpTypePointer:
-            if (nops >= 1 && op[0] < bound)
-            {
-                ids[op[0]].opcode = opcode;
-                ids[op[0]].operands.assign(op, op + nops);
-            }
-            break;
-        case OpConstant:
-        case OpVariable:
-            if (nops >= 2 && op[1] < bound)
-            {
-                ids[op[1]].opcode = opcode;
-                ids[op[1]].operands.assign(op, op + nops);
-                if (opcode == OpVariable)
-                    variables.push_back(op[1]);
-            }
-            break;
-        default:
-            break;
-        }
+        recordInstruction(opcode, &words[i + 1], count - 1, module, out);
         i += count;
     }
+    return true;
+}
 
+// Replaces the literal local size by the constants LocalSizeId names, where it names them.
+bool resolveLocalSizeIds(const ParsedModule& module, ShaderInterface& out, std::string& error)
+{
+    const std::vector<Id>& ids = module.ids;
     for (int k = 0; k < 3; ++k)
-        if (localSizeIds[k])
+        if (module.localSizeIds[k])
         {
-            if (localSizeIds[k] >= bound || ids[localSizeIds[k]].opcode != OpConstant ||
-                ids[localSizeIds[k]].operands.size() < 3)
+            if (module.localSizeIds[k] >= module.bound || ids[module.localSizeIds[k]].opcode != OpConstant ||
+                ids[module.localSizeIds[k]].operands.size() < 3)
             {
                 error = "LocalSizeId does not name a constant";
                 return false;
             }
-            out.localSize[k] = ids[localSizeIds[k]].operands[2];
+            out.localSize[k] = ids[module.localSizeIds[k]].operands[2];
         }
+    return true;
+}
 
-    std::map<int, VkDescriptorType> bindings;
-    for (uint32_t v : variables)
+// The descriptor type of a resource variable from its storage class and pointee type; false when the
+// renderer does not support it.
+bool descriptorTypeOf(uint32_t storage, const Id& type, VkDescriptorType& dt)
+{
+    if (storage == StorageUniformConstant && type.opcode == OpTypeImage)
+        dt = type.operands[6] == 2 ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+    else if (storage == StorageUniformConstant && type.opcode == OpTypeSampledImage)
+        dt = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    else if (storage == StorageUniformConstant && type.opcode == OpTypeSampler)
+        dt = VK_DESCRIPTOR_TYPE_SAMPLER;
+    else if (storage == StorageUniform && type.block)
+        dt = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    else if ((storage == StorageUniform && type.bufferBlock) || storage == StorageStorageBuffer)
+        dt = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    else
+        return false;
+    return true;
+}
+
+// Sizes the push-constant block and maps each bound resource variable to its descriptor type.
+bool collectResources(const ParsedModule& module, ShaderInterface& out, std::map<int, VkDescriptorType>& bindings,
+                      std::string& error)
+{
+    const std::vector<Id>& ids = module.ids;
+    for (uint32_t v : module.variables)
     {
         const Id& var = ids[v];
         uint32_t storage = var.operands[2];
@@ -223,23 +266,20 @@ bool reflectSpirv(const std::vector<uint32_t>& words, ShaderInterface& out, std:
             return false;
         }
         VkDescriptorType dt;
-        if (storage == StorageUniformConstant && type.opcode == OpTypeImage)
-            dt = type.operands[6] == 2 ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
-        else if (storage == StorageUniformConstant && type.opcode == OpTypeSampledImage)
-            dt = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        else if (storage == StorageUniformConstant && type.opcode == OpTypeSampler)
-            dt = VK_DESCRIPTOR_TYPE_SAMPLER;
-        else if (storage == StorageUniform && type.block)
-            dt = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-        else if ((storage == StorageUniform && type.bufferBlock) || storage == StorageStorageBuffer)
-            dt = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        else
+        if (!descriptorTypeOf(storage, type, dt))
         {
             error = "unsupported resource at binding " + std::to_string(var.binding);
             return false;
         }
         bindings[var.binding] = dt;
     }
+    return true;
+}
+
+// Lists the descriptor types in binding order: ShaderInterface::bindings is indexed by binding number
+// (skyservice/vk/programs.h), so a gap cannot be expressed.
+bool numberBindings(const std::map<int, VkDescriptorType>& bindings, ShaderInterface& out, std::string& error)
+{
     for (const auto& [binding, type] : bindings)
     {
         if (binding != int(out.bindings.size()))
@@ -251,6 +291,23 @@ bool reflectSpirv(const std::vector<uint32_t>& words, ShaderInterface& out, std:
         out.bindings.push_back(type);
     }
     return true;
+}
+
+}  // namespace
+
+bool reflectSpirv(const std::vector<uint32_t>& words, ShaderInterface& out, std::string& error)
+{
+    out = ShaderInterface{};
+    if (words.size() < 5 || words[0] != 0x07230203)
+    {
+        error = "not a SPIR-V module (bad magic number)";
+        return false;
+    }
+    ParsedModule module;
+    if (!parseInstructions(words, module, out, error) || !resolveLocalSizeIds(module, out, error))
+        return false;
+    std::map<int, VkDescriptorType> bindings;
+    return collectResources(module, out, bindings, error) && numberBindings(bindings, out, error);
 }
 
 std::string spirvDirectory()
