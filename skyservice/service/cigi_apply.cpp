@@ -34,9 +34,22 @@ double roughDistanceM(double lat0, double lon0, double lat1, double lon1)
 void CigiApplier::report(Problem problem, bool failed, const std::string& message)
 {
     std::string& current = problems_[problem];
-    if (failed && current.empty())
+    if (failed && current.empty() && problemLogs_[problem].admit(SteadyClock::now()))
         SKY_LOG_WARN("cigi: %s (logged once until it works again)", message.c_str());
     current = failed ? message : std::string();
+}
+
+void CigiApplier::logHeldBack(SteadyClock::time_point now)
+{
+    static const char* const kNames[kProblemCount] = {"ownship pose", "view", "weather"};
+    for (size_t k = 0; k < kProblemCount; ++k)
+    {
+        double spanS = 0;
+        if (const uint64_t n = problemLogs_[k].heldBack(now, &spanS))
+            SKY_LOG_WARN("cigi: %s failed again %llu more times in the last %.0f s (not logged one by one; status "
+                         "cigi.applied shows the current error)",
+                         kNames[k], (unsigned long long)n, spanS);
+    }
 }
 
 double CigiApplier::nowS() const
