@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/service/cigi_apply.h"
 
+#include "skyservice/render/view_limits.h"
 #include "skyservice/service/cigi_view.h"
 #include "skyservice/service/cigi_weather_merge.h"
 #include "skyservice/service/log.h"
@@ -241,7 +242,7 @@ void CigiApplier::apply(const cigi::CigiState& state, const cigi::DecodeResult& 
         if (haveFrustum)
         {
             s.view.frustum = frustum;
-            s.view.fovYDeg = std::clamp(fovYDeg, 1.0, 170.0);
+            s.view.fovYDeg = std::clamp(fovYDeg, kMinFovYDeg, kMaxFovYDeg);
             frustumApplied_ = true;
         }
         if (contains<cigi::CelestialSphereControl>(datagram))

@@ -452,6 +452,11 @@ nlohmann::json ControlLoop::statusJson()
             {"weather", weather},
             {"windows", {{"made_on_frame_path", s.windowsMadeOnFramePath}, {"from_worker", s.windowsFromWorker}}},
             {"last_render_error", s.lastRenderError.empty() ? nlohmann::json() : nlohmann::json(s.lastRenderError)},
+            {"frames_failed", s.framesFailed},
+            {"last_failed_frame",
+             s.lastFailedFrameId == 0
+                 ? nlohmann::json()
+                 : nlohmann::json{{"frame_id", s.lastFailedFrameId}, {"error", s.lastFailedFrameError}}},
             {"cigi", cigi},
             {"clients", c_.server->clientCount()},
             {"uptime_s", uptime}};

@@ -278,6 +278,15 @@ void RenderLoop::Impl::startFrame(uint64_t id, ViewRequest& request, const SimCl
     if (!status.ok())
     {
         completeInFlight();
+        // The write_files requests this frame was rendered for learn that it failed, and why: otherwise
+        // they would wait for a frame that, rendered on request only, may never come.
+        if (frame.copyPixels)
+        {
+            std::vector<RenderJob> waiting;
+            waiting.swap(pendingWriteFiles);
+            for (const RenderJob& job : waiting)
+                reply(job.client, failedLine(job.requestId, "frame " + std::to_string(id) + ": " + status.message));
+        }
         frameDone(id, status, std::chrono::duration<double, std::milli>(SteadyClock::now() - frame.start).count());
         return;
     }
@@ -388,6 +397,12 @@ void RenderLoop::Impl::frameDone(uint64_t id, const SkyStatus& status, double ms
         s.recordFrameMs(ms);
         s.recordFrameTimes(FrameTimes{id, ms, lastPublishMs, result.gpuMs});
         s.frameWeather = FrameWeather{result.weatherVersion, lastDrawn.source, result.weatherValidTimeUnixS, true};
+    }
+    else
+    {
+        ++s.framesFailed;
+        s.lastFailedFrameId = id;
+        s.lastFailedFrameError = error;
     }
     s.weatherPending = weatherSchedule.pending();
     s.windowsMadeOnFramePath = r.weather.prefetch.madeOnFrame;
