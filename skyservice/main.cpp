@@ -8,6 +8,7 @@
 #include "skyservice/app/commands.h"
 
 #ifdef SKY_HAVE_SERVICE
+#include "skyservice/render/view_limits.h"
 #include "skyservice/service/daemon.h"
 #endif
 
@@ -36,7 +37,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderCommandOptions& render)
     cmd->add_option("--pitch", v.pose.pitchDeg, "Pitch, + nose up (degrees)")->check(CLI::Range(-90.0, 90.0));
     cmd->add_option("--roll", v.pose.rollDeg, "Roll, + right wing down (degrees)")->check(CLI::Range(-180.0, 180.0));
     CLI::Option* fov =
-        cmd->add_option("--fov", v.fovYDeg, "Vertical field of view (degrees)")->check(CLI::Range(1.0, 170.0));
+        cmd->add_option("--fov", v.fovYDeg, "Vertical field of view (degrees)")->check(CLI::Range(sky::kMinFovYDeg, sky::kMaxFovYDeg));
     // An off-centre frustum (a display wall's channel): the four half-angles together, instead of --fov.
     const struct
     {
@@ -60,7 +61,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderCommandOptions& render)
                                     v.frustum.asymmetric = true;
                                 },
                                 a.help)
-                             ->check(CLI::Range(-85.0, 85.0))
+                             ->check(CLI::Range(-sky::kMaxFrustumHalfAngleDeg, sky::kMaxFrustumHalfAngleDeg))
                              ->excludes(fov));
     }
     for (CLI::Option* a : angles)

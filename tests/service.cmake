@@ -18,3 +18,11 @@ if(TARGET sky_service AND TARGET skyclient)
     add_dependencies(service_e2e_test skyservice)
     gtest_discover_tests(service_e2e_test TEST_PREFIX service. PROPERTIES TIMEOUT 240)
 endif()
+
+# The daemon's parts on the CPU, without a daemon: the log limiter.
+if(TARGET sky_service)
+    add_executable(test_service_cpu ${CMAKE_CURRENT_LIST_DIR}/service/unit/log_limiter_test.cpp)
+    target_include_directories(test_service_cpu PRIVATE ${PROJECT_SOURCE_DIR})
+    target_link_libraries(test_service_cpu PRIVATE sky_service GTest::gtest_main sky_warnings)
+    gtest_discover_tests(test_service_cpu TEST_PREFIX "service.cpu." DISCOVERY_TIMEOUT 30 PROPERTIES LABELS cpu)
+endif()

@@ -3,6 +3,8 @@
 // rule; nothing here has side effects, so "a malformed request changes nothing" holds by construction.
 #include "skyservice/ipc/protocol.h"
 
+#include "skyservice/render/view_limits.h"
+
 #include <cmath>
 #include <cstdio>
 #include <utility>
@@ -133,16 +135,20 @@ bool parseView(const json& v, const ProtocolLimits& limits, ViewUpdate& out, Che
         const char* name;
         double lo, hi;
         std::optional<double>* target;
+        bool open = false; ///< lo and hi themselves are outside
     };
     // Ranges of PROTOCOL.md: longitude and heading allow one wrap either way, so a client may send its
     // unwrapped value; altitude from the Dead Sea shore to the edge of the modelled atmosphere.
     const Angle fields[] = {
         {"lat", -90, 90, &out.lat},       {"lon", -540, 540, &out.lon},         {"alt", -500, 100000, &out.alt},
         {"heading", -360, 720, &out.heading}, {"pitch", -90, 90, &out.pitch}, {"roll", -180, 180, &out.roll},
-        {"fov", 1, 170, &out.fov},
+        // The renderer's ranges (skyservice/render/view_limits.h): a view the parser takes is one it draws.
+        {"fov", kMinFovYDeg, kMaxFovYDeg, &out.fov},
         // An asymmetric frustum; the service also checks left + right and up + down (view_frustum.h).
-        {"left", -85, 85, &out.left}, {"right", -85, 85, &out.right}, {"up", -85, 85, &out.up},
-        {"down", -85, 85, &out.down},
+        {"left", -kMaxFrustumHalfAngleDeg, kMaxFrustumHalfAngleDeg, &out.left, true},
+        {"right", -kMaxFrustumHalfAngleDeg, kMaxFrustumHalfAngleDeg, &out.right, true},
+        {"up", -kMaxFrustumHalfAngleDeg, kMaxFrustumHalfAngleDeg, &out.up, true},
+        {"down", -kMaxFrustumHalfAngleDeg, kMaxFrustumHalfAngleDeg, &out.down, true},
     };
     bool any = false;
     for (const Angle& f : fields)
@@ -150,8 +156,13 @@ bool parseView(const json& v, const ProtocolLimits& limits, ViewUpdate& out, Che
         if (!v.contains(f.name))
             continue;
         double value;
-        if (!check.number(v[f.name], std::string("view.") + f.name, f.lo, f.hi, value))
+        const std::string field = std::string("view.") + f.name;
+        if (!check.number(v[f.name], field, f.lo, f.hi, value))
             return false;
+        if (f.open && (value == f.lo || value == f.hi))
+            return check.fail("out_of_range", field,
+                              field + " = " + numberText(value) + " is outside (" + numberText(f.lo) + ", " +
+                                  numberText(f.hi) + ")");
         *f.target = value;
         any = true;
     }

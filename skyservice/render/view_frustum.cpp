@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/render/view_frustum.h"
 
+#include "skyservice/render/view_limits.h"
+
 #include <cmath>
 
 namespace sky
@@ -43,19 +45,20 @@ bool validateFrustum(const Frustum& f, std::string& error)
         double deg;
     } angles[] = {{"left", f.leftDeg}, {"right", f.rightDeg}, {"up", f.upDeg}, {"down", f.downDeg}};
     for (const auto& a : angles)
-        if (!(a.deg > -85.0 && a.deg < 85.0))
+        if (!frustumHalfAngleInRange(a.deg))
         {
-            error = std::string("frustum half-angle ") + a.name + " = " + std::to_string(a.deg) +
-                    " outside (-85, 85) degrees";
+            error = std::string("frustum half-angle ") + a.name + " = " + std::to_string(a.deg) + " outside (-" +
+                    std::to_string(int(kMaxFrustumHalfAngleDeg)) + ", " + std::to_string(int(kMaxFrustumHalfAngleDeg)) +
+                    ") degrees";
             return false;
         }
-    if (!(f.leftDeg + f.rightDeg > 1.0))
+    if (!(f.leftDeg + f.rightDeg > kMinFrustumSpanDeg))
     {
         error = "frustum left + right = " + std::to_string(f.leftDeg + f.rightDeg) +
                 " degrees: the view must be more than 1 degree wide";
         return false;
     }
-    if (!(f.upDeg + f.downDeg > 1.0))
+    if (!(f.upDeg + f.downDeg > kMinFrustumSpanDeg))
     {
         error = "frustum up + down = " + std::to_string(f.upDeg + f.downDeg) +
                 " degrees: the view must be more than 1 degree high";

@@ -19,9 +19,10 @@ bool validateView(const ViewRequest& view, std::string& error)
     }
     if (view.frustum.asymmetric)
         return validateFrustum(view.frustum, error);
-    if (!(view.fovYDeg > 1.0 && view.fovYDeg < 170.0))
+    if (!fovYInRange(view.fovYDeg))
     {
-        error = "vertical field of view " + std::to_string(view.fovYDeg) + " outside (1, 170) degrees";
+        error = "vertical field of view " + std::to_string(view.fovYDeg) + " outside [" +
+                std::to_string(int(kMinFovYDeg)) + ", " + std::to_string(int(kMaxFovYDeg)) + "] degrees";
         return false;
     }
     error.clear();

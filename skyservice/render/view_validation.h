@@ -8,6 +8,7 @@
 #pragma once
 
 #include "skyservice/render/render_types.h"
+#include "skyservice/render/view_limits.h"
 
 #include <cstdint>
 #include <string>
@@ -19,7 +20,8 @@ namespace sky
 constexpr uint32_t kMinViewSizePx = 8;
 constexpr uint32_t kMaxViewSizePx = 8192;
 
-/// True when the renderer may draw `view`; otherwise false and `error` says what is wrong, in one line.
+/// True when the renderer may draw `view` (the ranges of view_limits.h among its rules); otherwise false
+/// and `error` says what is wrong, in one line.
 bool validateView(const ViewRequest& view, std::string& error);
 
 }  // namespace sky

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "skyservice/service/cigi_apply.h"
 
+#include "skyservice/render/view_limits.h"
 #include "skyservice/service/cigi_view.h"
 #include "skyservice/service/cigi_weather_merge.h"
 #include "skyservice/service/log.h"
@@ -34,9 +35,22 @@ double roughDistanceM(double lat0, double lon0, double lat1, double lon1)
 void CigiApplier::report(Problem problem, bool failed, const std::string& message)
 {
     std::string& current = problems_[problem];
-    if (failed && current.empty())
+    if (failed && current.empty() && problemLogs_[problem].admit(SteadyClock::now()))
         SKY_LOG_WARN("cigi: %s (logged once until it works again)", message.c_str());
     current = failed ? message : std::string();
+}
+
+void CigiApplier::logHeldBack(SteadyClock::time_point now)
+{
+    static const char* const kNames[kProblemCount] = {"ownship pose", "view", "weather"};
+    for (size_t k = 0; k < kProblemCount; ++k)
+    {
+        double spanS = 0;
+        if (const uint64_t n = problemLogs_[k].heldBack(now, &spanS))
+            SKY_LOG_WARN("cigi: %s failed again %llu more times in the last %.0f s (not logged one by one; status "
+                         "cigi.applied shows the current error)",
+                         kNames[k], (unsigned long long)n, spanS);
+    }
 }
 
 double CigiApplier::nowS() const
@@ -228,7 +242,7 @@ void CigiApplier::apply(const cigi::CigiState& state, const cigi::DecodeResult& 
         if (haveFrustum)
         {
             s.view.frustum = frustum;
-            s.view.fovYDeg = std::clamp(fovYDeg, 1.0, 170.0);
+            s.view.fovYDeg = std::clamp(fovYDeg, kMinFovYDeg, kMaxFovYDeg);
             frustumApplied_ = true;
         }
         if (contains<cigi::CelestialSphereControl>(datagram))

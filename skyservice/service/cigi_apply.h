@@ -27,6 +27,7 @@
 #include "skyservice/cigi/geoid_undulation.h"
 #include "skyservice/service/cigi_weather.h"
 #include "skyservice/service/cigi_weather_fade.h"
+#include "skyservice/service/log_limiter.h"
 #include "skyservice/service/service_state.h"
 
 #include <nlohmann/json.hpp>
@@ -70,6 +71,10 @@ class CigiApplier
     /// What was applied last, for the status reply.
     nlohmann::json statusJson() const;
 
+    /// Logs how often each problem came back within the last window (a host that alternates good and bad
+    /// datagrams): call now and then, also while the host is quiet.
+    void logHeldBack(SteadyClock::time_point now);
+
   private:
     void applyView(const cigi::CigiState& state, ServiceState& service);
     void applyTime(const cigi::CigiState& state, ServiceState& service);
@@ -92,7 +97,8 @@ class CigiApplier
     Built weatherFor(const cigi::CigiState& state, ServiceState& service, const EyePose* pose, double nowS);
     /// Caller holds service.mutex.
     void install(ServiceState& service, Built weather);
-    /// What can fail when applying: each is logged when it starts failing, not again until it has worked.
+    /// What can fail when applying: each is logged when it starts failing, not again until it has worked,
+    /// and at most once per window of its limiter (a host can make it start failing with every datagram).
     enum Problem
     {
         kPose,
@@ -115,6 +121,7 @@ class CigiApplier
     uint64_t publishedVersion_ = 0; ///< WeatherState::version of the last snapshot swapped in
     uint64_t weatherBuilds_ = 0, fadeSteps_ = 0;
     std::array<std::string, kProblemCount> problems_; ///< the current failure of each ("" = none)
+    std::array<LogLimiter, kProblemCount> problemLogs_;
     bool frustumApplied_ = false;
 };
 

@@ -22,6 +22,7 @@ namespace
 constexpr size_t kMaxReplyBytes = 60000;
 constexpr int kPollMs = 200;                                // how soon stop() is noticed
 constexpr int kFadePollMs = int(kCigiFadeStepS * 1000 / 2); // while a fade is under way: its steps' pace
+constexpr int kMaxBatch = 256;                              // datagrams read between two polls
 
 std::string addressText(const sockaddr_in& a)
 {
@@ -86,6 +87,7 @@ void CigiLink::run()
         pollfd p{fd_, POLLIN, 0};
         if (poll(&p, 1, fading ? kFadePollMs : kPollMs) > 0)
             receive();
+        logHeldBack(); // also when the host has gone quiet: the last count of a flood is not lost
         if (fading) // the next step of the fade, also when the host has gone quiet
         {
             cigi::CigiState snapshot;
@@ -102,7 +104,9 @@ void CigiLink::run()
 void CigiLink::receive()
 {
     std::vector<uint8_t> buffer(65536);
-    for (;;) // every datagram waiting, then back to poll
+    // The datagrams waiting, then back to poll; at most kMaxBatch, so that a host that never stops
+    // sending still lets stop() and the log's summaries through.
+    for (int k = 0; k < kMaxBatch; ++k)
     {
         sockaddr_in from{};
         socklen_t fromLen = sizeof from;
@@ -110,7 +114,11 @@ void CigiLink::receive()
         if (n < 0)
         {
             if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)
-                SKY_LOG_WARN("cigi: recvfrom: %s", std::strerror(errno));
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                if (receiveLog_.admit(SteadyClock::now()))
+                    SKY_LOG_WARN("cigi: recvfrom: %s", std::strerror(errno));
+            }
             return;
         }
         cigi::DecodeResult datagram;
@@ -128,8 +136,14 @@ void CigiLink::receive()
             // A destroyed region is forgotten here; the applier's fade keeps what it drew until it faded out.
             cigi::pruneDestroyedRegions(state_, state_.lastHostFrame);
             if (!haveHost_ || host_.sin_addr.s_addr != from.sin_addr.s_addr)
-                SKY_LOG_INFO("cigi: host %s (%s-endian); replies go to its port %u", addressText(from).c_str(),
-                             datagram.order == cigi::ByteOrder::Big ? "big" : "little", config_.replyPort());
+            {
+                // Two hosts taking turns (a second host on the network, a spoofer) change it with every
+                // datagram: the change is counted, and logged at most once per window of hostLog_.
+                hostChanges_ += haveHost_ ? 1 : 0;
+                if (hostLog_.admit(SteadyClock::now()))
+                    SKY_LOG_INFO("cigi: host %s (%s-endian); replies go to its port %u", addressText(from).c_str(),
+                                 datagram.order == cigi::ByteOrder::Big ? "big" : "little", config_.replyPort());
+            }
             host_ = from;
             host_.sin_port = htons(uint16_t(config_.replyPort()));
             haveHost_ = true;
@@ -139,6 +153,27 @@ void CigiLink::receive()
         std::lock_guard<std::mutex> lock(applierMutex_);
         applier_->apply(snapshot, datagram, *service_);
     }
+}
+
+void CigiLink::logHeldBack()
+{
+    const SteadyClock::time_point now = SteadyClock::now();
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        double spanS = 0;
+        if (const uint64_t n = hostLog_.heldBack(now, &spanS))
+            SKY_LOG_INFO("cigi: host changed %llu more times in the last %.0f s (now %s; status cigi.host_changes "
+                         "counts every change)",
+                         (unsigned long long)n, spanS, addressText(host_).c_str());
+        if (const uint64_t n = receiveLog_.heldBack(now, &spanS))
+            SKY_LOG_WARN("cigi: recvfrom failed %llu more times in the last %.0f s", (unsigned long long)n, spanS);
+        if (const uint64_t n = sendLog_.heldBack(now, &spanS))
+            SKY_LOG_WARN("cigi: %llu more distinct sendto errors in the last %.0f s (status cigi.send_errors counts "
+                         "every one)",
+                         (unsigned long long)n, spanS);
+    }
+    std::lock_guard<std::mutex> lock(applierMutex_);
+    applier_->logHeldBack(now);
 }
 
 void CigiLink::frameEnded(uint64_t /*frameId*/, bool ok)
@@ -187,7 +222,8 @@ void CigiLink::frameEnded(uint64_t /*frameId*/, bool ok)
         ++sendErrors_;
         std::string why = std::string("sendto ") + addressText(host_) + ":" + std::to_string(config_.replyPort()) +
                           ": " + std::strerror(errno);
-        if (why != lastSendError_)
+        // Distinct errors alternate when hosts do (each names its address): a limiter bounds those too.
+        if (why != lastSendError_ && sendLog_.admit(SteadyClock::now()))
             SKY_LOG_WARN("cigi: %s (logged once per distinct error)", why.c_str());
         lastSendError_ = why;
         return;
@@ -215,6 +251,7 @@ nlohmann::json CigiLink::statusJson() const
             {"ownship_id", config_.ownship},
             {"geoid", geoidError_.empty() ? nlohmann::json(cigi::defaultEgm96GridPath()) : nlohmann::json()},
             {"host", haveHost_ ? nlohmann::json(addressText(host_)) : nlohmann::json()},
+            {"host_changes", hostChanges_},
             {"host_byte_order", state_.hostByteOrder == cigi::ByteOrder::Big ? "big" : "little"},
             {"datagrams", c.datagrams},
             {"datagrams_dropped", c.datagramsDropped},

@@ -4,8 +4,9 @@
 // the next frame (cigi_apply.h). After every frame the render loop calls frameEnded: the link sends Start
 // of Frame, followed by the answers to the Environmental Conditions Requests that came since, to the
 // address the last host datagram came from, at the host port. Nothing here waits on the render thread or
-// the network: a bad datagram is counted (status "cigi"), each kind of error is logged once, and a host
-// that stops sending leaves the last state in place.
+// the network: a bad datagram is counted (status "cigi"), each kind of error is logged once, a line a host
+// can repeat at will (a change of host, a send error) at most once per few seconds (log_limiter.h), and a
+// host that stops sending leaves the last state in place.
 #pragma once
 
 #include "skyservice/cigi/cigi_decoder.h"
@@ -13,6 +14,7 @@
 #include "skyservice/cigi/cigi_state.h"
 #include "skyservice/cigi/geoid_undulation.h"
 #include "skyservice/service/cigi_apply.h"
+#include "skyservice/service/log_limiter.h"
 #include "skyservice/service/service_config.h"
 #include "skyservice/service/service_state.h"
 
@@ -52,6 +54,8 @@ class CigiLink
   private:
     void run();
     void receive();
+    /// The summaries of the lines the limiters held back (each at most once per window).
+    void logHeldBack();
 
     CigiConfig config_;
     ServiceState* service_ = nullptr;
@@ -71,7 +75,9 @@ class CigiLink
     sockaddr_in host_{}; ///< where the last accepted host datagram came from
     bool haveHost_ = false;
     uint64_t startOfFramesSent_ = 0, responsesSent_ = 0, sendErrors_ = 0;
+    uint64_t hostChanges_ = 0; ///< datagrams from another address than the one before
     std::string lastSendError_;
+    LogLimiter hostLog_, receiveLog_, sendLog_;
 };
 
 } // namespace sky

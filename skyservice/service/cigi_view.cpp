@@ -2,6 +2,8 @@
 #include "skyservice/service/cigi_view.h"
 
 #include "skyservice/earth/geodesy.h"
+#include "skyservice/render/view_frustum.h"
+#include "skyservice/render/view_limits.h"
 
 #include <GeographicLib/LocalCartesian.hpp>
 
@@ -91,20 +93,16 @@ bool cigiFrustum(const cigi::ViewState& view, Frustum& out, double& fovYDeg, std
     f.rightDeg = double(view.rightDeg);
     f.upDeg = double(view.topDeg);
     f.downDeg = -double(view.bottomDeg);
-    for (double a : {f.leftDeg, f.rightDeg, f.upDeg, f.downDeg})
-        if (!(a > -85.0 && a < 85.0))
-        {
-            error = "View Definition " + std::to_string(view.viewId) + ": a half-angle of " + std::to_string(a) +
-                    " degrees is outside (-85, 85)";
-            return false;
-        }
-    if (!(f.leftDeg + f.rightDeg > 1.0 && f.upDeg + f.downDeg > 1.0))
+    // The renderer's own rule (view_limits.h), checked here where the host's view enters: a View
+    // Definition it would refuse is not applied, so no frame meets it.
+    std::string why;
+    if (!validateFrustum(f, why))
     {
-        error = "View Definition " + std::to_string(view.viewId) + ": left/right or top/bottom span less than 1 degree";
+        error = "View Definition " + std::to_string(view.viewId) + ": " + why;
         return false;
     }
     out = f;
-    fovYDeg = f.upDeg + f.downDeg;
+    fovYDeg = f.upDeg + f.downDeg; // within [kMinFovYDeg, kMaxFovYDeg]: each half-angle is under 85
     return true;
 }
 

@@ -70,13 +70,15 @@ ControlSocketServer::Handlers ControlLoop::handlers()
     ControlSocketServer::Handlers h;
     h.connected = [this](ClientId client) {
         clients_[client] = Client{};
-        SKY_LOG_INFO("client %llu connected (uid %u)", (unsigned long long)client, c_.server->peerUid(client));
+        if (connectionLog_.admit(SteadyClock::now()))
+            SKY_LOG_INFO("client %llu connected (uid %u)", (unsigned long long)client, c_.server->peerUid(client));
     };
     h.line = [this](ClientId client, std::string_view line) { onLine(client, line); };
     h.disconnected = [this](ClientId client) {
         auto it = clients_.find(client);
-        SKY_LOG_INFO("client %llu (%s) disconnected", (unsigned long long)client,
-                     it != clients_.end() && !it->second.name.empty() ? it->second.name.c_str() : "unnamed");
+        if (connectionLog_.admit(SteadyClock::now()))
+            SKY_LOG_INFO("client %llu (%s) disconnected", (unsigned long long)client,
+                         it != clients_.end() && !it->second.name.empty() ? it->second.name.c_str() : "unnamed");
         clients_.erase(client);
         std::lock_guard<std::mutex> lock(c_.state->mutex);
         std::erase_if(c_.state->files, [client](const FilesSubscription& f) { return f.client == client; });
@@ -163,7 +165,8 @@ void ControlLoop::dispatch(ClientId client, const Request& request)
             sendError(client, request.id, "out_of_range", "path must be absolute", "path");
             return;
         }
-        SKY_LOG_INFO("load_weather %s (client %llu)", request.path.c_str(), (unsigned long long)client);
+        if (filesRequestLog_.admit(SteadyClock::now()))
+            SKY_LOG_INFO("load_weather %s (client %llu)", request.path.c_str(), (unsigned long long)client);
         c_.loader->enqueue(request.path);
         c_.server->send(client, okReply(request, {{"queued", true}}));
         return;
@@ -206,12 +209,26 @@ void ControlLoop::dispatch(ClientId client, const Request& request)
             sendError(client, request.id, "out_of_range", why, "prefix");
             return;
         }
-        SKY_LOG_INFO("write_files %s (client %llu, uid %u)", request.path.c_str(), (unsigned long long)client,
-                     c_.server->peerUid(client));
+        if (filesRequestLog_.admit(SteadyClock::now()))
+            SKY_LOG_INFO("write_files %s (client %llu, uid %u)", request.path.c_str(), (unsigned long long)client,
+                         c_.server->peerUid(client));
         queueJob(client, request, RenderJob{RenderJob::WriteFiles, client, request.id, request.path});
         return;  // the render thread replies once the files are written
     }
     }
+}
+
+void ControlLoop::logHeldBack()
+{
+    const SteadyClock::time_point now = SteadyClock::now();
+    double spanS = 0;
+    if (const uint64_t n = connectionLog_.heldBack(now, &spanS))
+        SKY_LOG_INFO("%llu more client connects and disconnects in the last %.0f s (not logged one by one)",
+                     (unsigned long long)n, spanS);
+    if (const uint64_t n = filesRequestLog_.heldBack(now, &spanS))
+        SKY_LOG_INFO("%llu more load_weather / write_files / subscribe files requests in the last %.0f s (not "
+                     "logged one by one)",
+                     (unsigned long long)n, spanS);
 }
 
 void ControlLoop::setView(ClientId client, const Request& request)
@@ -314,8 +331,9 @@ void ControlLoop::subscribe(ClientId client, const Request& request)
         return;
     case Transport::Files:
     {
-        SKY_LOG_INFO("subscribe files %s (client %llu, uid %u)", request.path.c_str(), (unsigned long long)client,
-                     c_.server->peerUid(client));
+        if (filesRequestLog_.admit(SteadyClock::now()))
+            SKY_LOG_INFO("subscribe files %s (client %llu, uid %u)", request.path.c_str(),
+                         (unsigned long long)client, c_.server->peerUid(client));
         FilesFolder folder;
         std::string why;
         if (!FilesRoot::checkName(request.path, "dir", why))
@@ -434,6 +452,11 @@ nlohmann::json ControlLoop::statusJson()
             {"weather", weather},
             {"windows", {{"made_on_frame_path", s.windowsMadeOnFramePath}, {"from_worker", s.windowsFromWorker}}},
             {"last_render_error", s.lastRenderError.empty() ? nlohmann::json() : nlohmann::json(s.lastRenderError)},
+            {"frames_failed", s.framesFailed},
+            {"last_failed_frame",
+             s.lastFailedFrameId == 0
+                 ? nlohmann::json()
+                 : nlohmann::json{{"frame_id", s.lastFailedFrameId}, {"error", s.lastFailedFrameError}}},
             {"cigi", cigi},
             {"clients", c_.server->clientCount()},
             {"uptime_s", uptime}};

@@ -10,6 +10,7 @@
 #include "skyservice/ipc/shm_ring.h"
 #include "skyservice/service/cigi_link.h"
 #include "skyservice/service/files_root.h"
+#include "skyservice/service/log_limiter.h"
 #include "skyservice/service/service_state.h"
 #include "skyservice/service/weather_loader.h"
 
@@ -45,6 +46,8 @@ public:
     void sendPendingReplies();
     /// The status reply's body (without id), also logged on SIGHUP.
     nlohmann::json statusJson();
+    /// Logs how many connection and files-request lines the limiters held back (call after each poll).
+    void logHeldBack();
 
 private:
     struct Client
@@ -65,6 +68,10 @@ private:
 
     ControlContext c_;
     std::unordered_map<ClientId, Client> clients_;
+    // A local peer can connect, or ask for files, in a loop: the first lines of a window are logged
+    // as they come (normal use stays line by line), a flood only as a count.
+    LogLimiter connectionLog_{5.0, 10};
+    LogLimiter filesRequestLog_{5.0, 10};
 };
 
 }  // namespace sky

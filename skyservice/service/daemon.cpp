@@ -314,6 +314,7 @@ int Daemon::run()
     {
         server_.poll(250, handlers);
         control.sendPendingReplies();
+        control.logHeldBack();
         if (hangup_.exchange(false))
             reload();
     }

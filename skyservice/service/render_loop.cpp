@@ -4,6 +4,7 @@
 #include "skyservice/app/render_files.h"
 #include "skyservice/ipc/protocol.h"
 #include "skyservice/service/log.h"
+#include "skyservice/service/log_limiter.h"
 #include "skyservice/service/shm_view.h"
 #include "skyservice/service/vulkan_export.h"
 #include "skyservice/service/weather_schedule.h"
@@ -86,6 +87,7 @@ struct RenderLoop::Impl
     WeatherSchedule weatherSchedule;
     VulkanExport exporter;
     std::string lastLoggedError;
+    LogLimiter frameErrorLog;  ///< distinct failures that alternate still cost a line per window, not per frame
     std::optional<InFlightFrame> inFlight;
     double lastPublishMs = 0;  ///< the last completed frame's copy into the ring and export (ms)
     /// write_files requests that came while the last frame had no pixels on the host (or no linear frame
@@ -276,6 +278,15 @@ void RenderLoop::Impl::startFrame(uint64_t id, ViewRequest& request, const SimCl
     if (!status.ok())
     {
         completeInFlight();
+        // The write_files requests this frame was rendered for learn that it failed, and why: otherwise
+        // they would wait for a frame that, rendered on request only, may never come.
+        if (frame.copyPixels)
+        {
+            std::vector<RenderJob> waiting;
+            waiting.swap(pendingWriteFiles);
+            for (const RenderJob& job : waiting)
+                reply(job.client, failedLine(job.requestId, "frame " + std::to_string(id) + ": " + status.message));
+        }
         frameDone(id, status, std::chrono::duration<double, std::milli>(SteadyClock::now() - frame.start).count());
         return;
     }
@@ -362,10 +373,15 @@ void RenderLoop::Impl::frameDone(uint64_t id, const SkyStatus& status, double ms
     if (!status.ok())
     {
         error = status.message;
-        if (error != lastLoggedError)  // one line per distinct failure, not one per frame
+        if (error != lastLoggedError && frameErrorLog.admit(SteadyClock::now()))  // not one line per frame
             SKY_LOG_ERROR("frame %llu: %s", (unsigned long long)id, error.c_str());
     }
     lastLoggedError = error;
+    double spanS = 0;
+    if (const uint64_t n = frameErrorLog.heldBack(SteadyClock::now(), &spanS))
+        SKY_LOG_ERROR("%llu more distinct frame failures in the last %.0f s (status frames_failed and "
+                      "last_failed_frame)",
+                      (unsigned long long)n, spanS);
     VkDeviceSize memory = 0, hostReadback = 0;
     {
         std::lock_guard<std::mutex> lock(r.memory.mutex);
@@ -381,6 +397,12 @@ void RenderLoop::Impl::frameDone(uint64_t id, const SkyStatus& status, double ms
         s.recordFrameMs(ms);
         s.recordFrameTimes(FrameTimes{id, ms, lastPublishMs, result.gpuMs});
         s.frameWeather = FrameWeather{result.weatherVersion, lastDrawn.source, result.weatherValidTimeUnixS, true};
+    }
+    else
+    {
+        ++s.framesFailed;
+        s.lastFailedFrameId = id;
+        s.lastFailedFrameError = error;
     }
     s.weatherPending = weatherSchedule.pending();
     s.windowsMadeOnFramePath = r.weather.prefetch.madeOnFrame;

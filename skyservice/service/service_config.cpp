@@ -181,7 +181,7 @@ bool readView(const toml::table& t, ViewRequest& v, std::string& key, std::strin
         {"lat", {&v.pose.latDeg, {-90, 90}}},        {"lon", {&v.pose.lonDeg, {-540, 540}}},
         {"alt", {&v.pose.altitudeM, {-500, 100000}}}, {"heading", {&v.pose.headingDeg, {-360, 720}}},
         {"pitch", {&v.pose.pitchDeg, {-90, 90}}},    {"roll", {&v.pose.rollDeg, {-180, 180}}},
-        {"fov", {&v.fovYDeg, {1, 170}}}};
+        {"fov", {&v.fovYDeg, {kMinFovYDeg, kMaxFovYDeg}}}};
     for (auto&& [k, node] : t)
     {
         key = "service.view." + std::string(k.str());

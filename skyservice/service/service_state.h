@@ -151,7 +151,10 @@ struct ServiceState
     std::deque<FrameTimes> recentFrames;  ///< the last kRecentFrames published frames, oldest first
     uint64_t deviceMemoryBytes = 0;
     uint64_t hostReadbackBytes = 0;  ///< the frames' host-cached readback buffers (system RAM)
-    std::string lastRenderError;
+    std::string lastRenderError;    ///< why the last frame failed; empty when it was published
+    uint64_t framesFailed = 0;      ///< frames that failed to render since start-up
+    uint64_t lastFailedFrameId = 0; ///< the last of them (0 = none); kept after later frames succeed
+    std::string lastFailedFrameError;
     std::deque<PendingReply> replies;
     FrameWeather frameWeather;      ///< the weather of the last published frame
     bool weatherPending = false;    ///< a new weather (load or re-sample) is being prepared off the frame path

@@ -9,6 +9,7 @@
 #include "skyservice/service/cigi_conditions.h"
 #include "skyservice/service/cigi_view.h"
 #include "skyservice/service/cigi_weather.h"
+#include "skyservice/render/view_validation.h"
 
 #include <gtest/gtest.h>
 
@@ -125,6 +126,52 @@ TEST(CigiEye, ViewDefinitionBecomesTheAsymmetricFrustum)
     v.leftDeg = 10; // both edges right of the axis, 10 degrees apart the wrong way
     v.rightDeg = 5;
     EXPECT_FALSE(cigiFrustum(v, f, fovY, error));
+}
+
+// A View Definition is taken exactly when the renderer draws the frustum it becomes (one rule,
+// skyservice/render/view_limits.h): an extreme one is refused where it enters, never by a frame. The
+// symmetric view's range is closed at both ends and the same for every entry.
+TEST(CigiEye, ExtremeViewDefinitionsAreRefusedWhereTheyEnter)
+{
+    ViewState v;
+    v.viewId = 2;
+    v.leftDeg = -84.99f;
+    v.rightDeg = 84.99f;
+    v.topDeg = 84.99f;
+    v.bottomDeg = -84.99f;
+    Frustum f;
+    double fovY = 0;
+    std::string error;
+    ASSERT_TRUE(cigiFrustum(v, f, fovY, error)) << error;
+    ViewRequest view;
+    view.width = 64;
+    view.height = 36;
+    view.frustum = f;
+    EXPECT_TRUE(validateView(view, error)) << error;
+    EXPECT_LE(fovY, kMaxFovYDeg);
+    for (float extreme : {85.0f, 89.0f, 180.0f})
+    {
+        v.topDeg = extreme;
+        EXPECT_FALSE(cigiFrustum(v, f, fovY, error)) << extreme;
+        EXPECT_NE(error.find("(-85, 85)"), std::string::npos) << error;
+        view.frustum.upDeg = double(extreme);
+        EXPECT_FALSE(validateView(view, error)) << extreme;
+    }
+
+    ViewRequest symmetric;
+    symmetric.width = 64;
+    symmetric.height = 36;
+    for (double fov : {kMinFovYDeg, 60.0, kMaxFovYDeg})
+    {
+        symmetric.fovYDeg = fov;
+        EXPECT_TRUE(validateView(symmetric, error)) << fov << ": " << error;
+    }
+    for (double fov : {kMinFovYDeg - 1e-3, kMaxFovYDeg + 1e-3, std::nan("")})
+    {
+        symmetric.fovYDeg = fov;
+        EXPECT_FALSE(validateView(symmetric, error)) << fov;
+        EXPECT_NE(error.find("[1, 170]"), std::string::npos) << error;
+    }
 }
 
 CigiState stateWith(std::initializer_list<WeatherControl> layers)

@@ -162,13 +162,15 @@ TEST(Protocol, AsymmetricFrustumHalfAngles)
     // Angles alone are a view change.
     ASSERT_TRUE(parseRequest(R"({"type":"set_view","view":{"left":0,"right":40,"up":20,"down":20}})", limits(), r, e))
         << e.message;
-    // All four together, never with fov, each in [-85, 85] (the service checks the open bounds and the
-    // sums: view_frustum.h validateFrustum).
+    // All four together, never with fov, each in (-85, 85) (skyservice/render/view_limits.h; the service
+    // checks the sums: view_frustum.h validateFrustum).
     const Case cases[] = {
         {R"({"type":"set_view","view":{"left":40,"right":0,"up":20}})", "missing_field", "view.down"},
         {R"({"type":"set_view","view":{"right":40,"up":20,"down":20}})", "missing_field", "view.left"},
         {R"({"type":"set_view","view":{"fov":60,"left":40,"right":0,"up":20,"down":20}})", "out_of_range", "view.fov"},
         {R"({"type":"set_view","view":{"left":85.5,"right":0,"up":20,"down":20}})", "out_of_range", "view.left"},
+        {R"({"type":"set_view","view":{"left":0,"right":40,"up":85,"down":20}})", "out_of_range", "view.up"},
+        {R"({"type":"set_view","view":{"left":-85,"right":40,"up":20,"down":20}})", "out_of_range", "view.left"},
         {R"({"type":"set_view","view":{"left":0,"right":40,"up":20,"down":-86}})", "out_of_range", "view.down"},
         {R"({"type":"set_view","view":{"left":0,"right":40,"up":"20","down":20}})", "bad_type", "view.up"},
     };
@@ -209,6 +211,9 @@ TEST(Protocol, ValidRequestsParse)
     EXPECT_EQ(*r.view.lon, -540.0);
     EXPECT_EQ(*r.view.width, 640u);
     EXPECT_EQ(*r.view.height, 8u);
+    // Both ends of fov's range are views the renderer draws (skyservice/render/view_limits.h).
+    ASSERT_TRUE(parseRequest(R"({"type":"set_view","view":{"fov":170}})", limits(), r, e)) << e.message;
+    EXPECT_EQ(*r.view.fov, 170.0);
     ASSERT_TRUE(parseRequest(R"({"type":"set_view","view":{"fov":60}})", limits(), r, e));
     EXPECT_FALSE(r.view.lat.has_value());
     EXPECT_EQ(*r.view.fov, 60.0);

@@ -80,17 +80,17 @@ CigiTestHost::~CigiTestHost()
         close(fd_);
 }
 
-bool CigiTestHost::open(std::string& error)
+bool CigiTestHost::open(std::string& error, uint32_t loopbackAddress)
 {
     fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
     sockaddr_in a{};
     a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    a.sin_addr.s_addr = htonl(loopbackAddress);
     socklen_t len = sizeof a;
     if (fd_ < 0 || bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 ||
         getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &len) != 0)
     {
-        error = "test host: cannot bind a UDP socket on 127.0.0.1";
+        error = "test host: cannot bind a UDP socket on 127.0.0." + std::to_string(loopbackAddress & 0xff);
         return false;
     }
     port_ = ntohs(a.sin_port);

@@ -37,8 +37,9 @@ class CigiTestHost
     CigiTestHost& operator=(const CigiTestHost&) = delete;
     ~CigiTestHost();
 
-    /// Binds 127.0.0.1 on a free port (port()).
-    bool open(std::string& error);
+    /// Binds `loopbackAddress` (host order; default 127.0.0.1, any of 127/8 on Linux: a second host's
+    /// own address) on a free port (port()).
+    bool open(std::string& error, uint32_t loopbackAddress = 0x7f000001);
     uint16_t port() const { return port_; }
     bool send(const std::vector<uint8_t>& bytes, uint16_t igPort);
     /// The next IG datagram, decoded; nothing after timeoutMs. A datagram that does not parse fails the

@@ -73,7 +73,7 @@ bool Daemon::start(const std::string& folder, const DaemonConfig& c, std::string
       << "render_rate_hz = " << c.renderRateHz << "\n"
       << "max_width = 128\nmax_height = 72\n"
       << "quality = \"test\"\n"
-      << "log_level = \"debug\"\n"
+      << "log_level = \"" << c.logLevel << "\"\n"
       << "time = \"2026-06-21T12:00:00Z\"\n"
       << "rate = 0\n";
     if (!c.weatherDir.empty())

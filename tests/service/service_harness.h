@@ -32,6 +32,7 @@ struct DaemonConfig
     std::string extraService;  ///< more [service] lines
     std::string extraSections; ///< more sections ([march] ...)
     bool defaultShmName = false;  ///< leave shm_name out: the daemon names its ring itself
+    std::string logLevel = "debug"; ///< [service] log_level ("info": what a daemon in service logs)
 };
 
 /// The config most tests use: 16x9 frames (enough for the plumbing, fast on lavapipe) rendered at

@@ -73,7 +73,7 @@ TEST(ServiceProtocol, MalformedMessagesChangeNothing)
         {"{\"type\":\"set_view\",\"view\":{\"fov\":50,\"left\":40,\"right\":0,\"up\":20,\"down\":20}}",
          "out_of_range", "view.fov"},
         {"{\"type\":\"set_view\",\"view\":{\"left\":85,\"right\":0,\"up\":20,\"down\":20}}", "out_of_range",
-         "view"},
+         "view.left"},
         {"{\"type\":\"set_view\",\"view\":{\"lat\":10,\"left\":40,\"right\":-39.5,\"up\":20,\"down\":20}}",
          "out_of_range", "view"},
         {"{\"type\":\"set_time\",\"time\":\"2026-13-45T00:00:00Z\"}", "out_of_range", "time"},
