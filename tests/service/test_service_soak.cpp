@@ -42,7 +42,8 @@ TEST(ServiceSoak, MemoryStaysFlat)
     std::vector<long> rssSamples;  // kB, after the warm-up, one per weather swap; the first is the warm value
     uint64_t deviceWarm = 0, deviceMax = 0;
     json s;
-    while (last < frames)
+    const uint64_t swapsWanted = frames / 100;  // one swap per 100 frames drawn after the previous one
+    while (swaps < swapsWanted)
     {
         ASSERT_EQ(sky_client_wait_frame(reader, last, 20000), SKY_OK) << sky_client_last_error(reader);
         SkyFrame f{};
@@ -106,8 +107,8 @@ TEST(ServiceSoak, MemoryStaysFlat)
     ASSERT_GT(rssWarm, 0);
     // Tolerances: device memory exactly flat (every allocation is tracked and reused). Host memory: a
     // weather swap makes a new weather window (17 MB with its half-float copy) before the old one is
-    // freed, so RSS moves by up to about one window from swap to swap (measured: 228-249 MB over 4000
-    // frames, no trend; SKY_SOAK_VERBOSE=1). So: every sample within one window plus 8 MiB of the warm
+    // freed, so RSS may move by up to about one window from swap to swap (measured, sampling once the new
+    // weather is drawn: 245-247 MB over 2000 frames, with both cores busy too; SKY_SOAK_VERBOSE=1). So: every sample within one window plus 8 MiB of the warm
     // value, and no trend: the lowest sample of the last third within 4 MiB of the lowest of the first
     // third (the lows repeat to within 1 MB; a leak of 4 kB per frame raises them past that).
     EXPECT_EQ(deviceMax, deviceWarm);
@@ -121,7 +122,6 @@ TEST(ServiceSoak, MemoryStaysFlat)
     }
     std::printf("soak: lowest RSS in the first third of the samples %ld kB, in the last third %ld kB\n", firstKb, lastKb);
     EXPECT_LT(lastKb - firstKb, 4 * 1024) << "RSS trends upward: a leak";
-    EXPECT_GE(swaps, frames / 100 - 1);
     EXPECT_TRUE(s["weather"]["last_error"].is_null()) << s;
     EXPECT_EQ(d.stop(), 0);
 }
