@@ -35,7 +35,7 @@ FlightFrameMeans meansOf(const FlightInputs& in, size_t first, size_t end, Wante
 {
     FlightFrameMeans m;
     double wallS = 0, clientMs = 0;
-    Mean daemon, publish, march, reconstruct, composite, sky, total;
+    Mean daemon, publish, setup, march, reconstruct, composite, sky, total;
     auto pass = [](const DaemonFrameTimes& t, const char* name, Mean& mean)
     {
         auto it = t.gpuMs.find(name);
@@ -55,6 +55,8 @@ FlightFrameMeans meansOf(const FlightInputs& in, size_t first, size_t end, Wante
         ++m.framesWithDaemonTimes;
         daemon.add(it->second.frameMs);
         publish.add(it->second.publishMs);
+        if (it->second.setupMs >= 0)
+            setup.add(it->second.setupMs);
         pass(it->second, "march", march);
         pass(it->second, "reconstruct", reconstruct);
         pass(it->second, "composite", composite);
@@ -67,6 +69,7 @@ FlightFrameMeans meansOf(const FlightInputs& in, size_t first, size_t end, Wante
     m.clientFrameMs = clientMs / m.frames;
     m.daemonFrameMs = daemon.value();
     m.publishMs = publish.value();
+    m.setupMs = setup.value();
     m.marchMs = march.value();
     m.reconstructMs = reconstruct.value();
     m.compositeMs = composite.value();
@@ -115,6 +118,7 @@ nlohmann::json meansJson(const FlightFrameMeans& m)
              {{"clientFrame", m.clientFrameMs},
               {"daemonFrame", orNull(m.daemonFrameMs)},
               {"publish", orNull(m.publishMs)},
+              {"setup", orNull(m.setupMs)},
               {"march", orNull(m.marchMs)},
               {"reconstruct", orNull(m.reconstructMs)},
               {"composite", orNull(m.compositeMs)},
@@ -137,9 +141,10 @@ std::string msCell(double ms) { return ms < 0 ? std::string("n/a") : std::to_str
 
 void printMeansRow(std::FILE* out, const char* label, const FlightFrameMeans& m)
 {
-    std::fprintf(out, "  %-22s %6u %8.1f %8.3f %8s %8s %8s %8s %8s %8s\n", label, m.frames, m.fps, m.clientFrameMs,
-                 msCell(m.daemonFrameMs).c_str(), msCell(m.gpuTotalMs).c_str(), msCell(m.marchMs).c_str(),
-                 msCell(m.reconstructMs).c_str(), msCell(m.compositeMs).c_str(), msCell(m.publishMs).c_str());
+    std::fprintf(out, "  %-22s %6u %8.1f %8.3f %8s %8s %8s %8s %8s %8s %8s\n", label, m.frames, m.fps,
+                 m.clientFrameMs, msCell(m.daemonFrameMs).c_str(), msCell(m.setupMs).c_str(),
+                 msCell(m.gpuTotalMs).c_str(), msCell(m.marchMs).c_str(), msCell(m.reconstructMs).c_str(),
+                 msCell(m.compositeMs).c_str(), msCell(m.publishMs).c_str());
 }
 
 } // namespace
@@ -240,8 +245,8 @@ void printFlightReport(std::FILE* out, const FlightReport& r)
                  w.pose.headingDeg, w.insideCloudLayer ? "inside a cloud layer" : "outside the cloud layers");
     if (!r.daemonTimesPublished)
         std::fprintf(out, "  (the daemon's status has no recent_frames: no per-pass times)\n");
-    std::fprintf(out, "  %-22s %6s %8s %8s %8s %8s %8s %8s %8s %8s\n", "mean ms", "frames", "fps", "client",
-                 "daemon", "gpu", "march", "reconst", "compos", "publish");
+    std::fprintf(out, "  %-22s %6s %8s %8s %8s %8s %8s %8s %8s %8s %8s\n", "mean ms", "frames", "fps", "client",
+                 "daemon", "setup", "gpu", "march", "reconst", "compos", "publish");
     printMeansRow(out, "whole path", r.whole);
     printMeansRow(out, "inside cloud layer", r.insideCloudLayer);
     printMeansRow(out, "outside cloud layers", r.outsideCloudLayer);
@@ -257,7 +262,7 @@ bool writeFlightFramesCsv(const std::string& path, const FlightInputs& in, std::
         return false;
     }
     f << "time_s,frame_id,lat_deg,lon_deg,alt_m,heading_deg,inside_layer,client_ms,period_ms,daemon_ms,"
-         "publish_ms,gpu_total_ms,march_ms,reconstruct_ms,composite_ms\n";
+         "publish_ms,setup_ms,gpu_total_ms,march_ms,reconstruct_ms,composite_ms\n";
     char line[512];
     for (size_t i = 0; i < in.run.latencyMs.size() && i < in.poses.size(); ++i)
     {
@@ -270,11 +275,13 @@ bool writeFlightFramesCsv(const std::string& path, const FlightInputs& in, std::
             return std::to_string(it->second.gpuMs.at(pass));
         };
         const bool have = it != in.daemonTimes.end();
-        std::snprintf(line, sizeof line, "%.4f,%llu,%.7f,%.7f,%.1f,%.2f,%d,%.4f,%.4f,%s,%s,%s,%s,%s,%s\n",
+        std::snprintf(line, sizeof line, "%.4f,%llu,%.7f,%.7f,%.1f,%.2f,%d,%.4f,%.4f,%s,%s,%s,%s,%s,%s,%s\n",
                       in.poses[i].timeS, (unsigned long long)in.run.frameIds[i], p.latDeg, p.lonDeg, p.altitudeM,
                       p.headingDeg, in.insideCloudLayer[i] ? 1 : 0, in.run.latencyMs[i],
                       1000.0 * framePeriodS(in.run, i), have ? std::to_string(it->second.frameMs).c_str() : "",
-                      have ? std::to_string(it->second.publishMs).c_str() : "", gpu("total").c_str(),
+                      have ? std::to_string(it->second.publishMs).c_str() : "",
+                      have && it->second.setupMs >= 0 ? std::to_string(it->second.setupMs).c_str() : "",
+                      gpu("total").c_str(),
                       gpu("march").c_str(), gpu("reconstruct").c_str(), gpu("composite").c_str());
         f << line;
     }

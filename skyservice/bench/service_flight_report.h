@@ -26,6 +26,7 @@ struct FlightFrameMeans
     double fps = 0;           ///< frames / the client's wall time for them
     double clientFrameMs = 0; ///< set_view -> frame in hand (pixels read)
     double daemonFrameMs = -1, publishMs = -1;
+    double setupMs = -1; ///< the daemon's CPU preparation of the frame (status recent_frames setup_ms)
     double marchMs = -1, reconstructMs = -1, compositeMs = -1, skyMs = -1, gpuTotalMs = -1;
 };
 

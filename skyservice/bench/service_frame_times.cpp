@@ -51,6 +51,7 @@ void DaemonFrameTimesReader::readOnce()
         DaemonFrameTimes t;
         t.frameMs = f.value("ms", 0.0);
         t.publishMs = f.value("publish_ms", 0.0);
+        t.setupMs = f.value("setup_ms", -1.0);
         if (f.contains("gpu_ms") && f["gpu_ms"].is_object())
             for (const auto& [pass, ms] : f["gpu_ms"].items())
                 if (ms.is_number())

@@ -21,6 +21,7 @@ struct DaemonFrameTimes
 {
     double frameMs = 0;   ///< submission to publication, wall clock
     double publishMs = 0; ///< the copy into the shared-memory ring and the zero-copy export
+    double setupMs = -1;  ///< the CPU's preparation of the frame (-1: a daemon that does not say)
     std::map<std::string, double> gpuMs; ///< per pass ("march", "reconstruct", "composite", "sky", "total", ...)
 };
 

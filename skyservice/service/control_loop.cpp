@@ -48,7 +48,7 @@ double quantile(std::vector<double> values, double q)
 double roundedMs(double ms) { return std::round(ms * 1000.0) / 1000.0; }
 
 /// The status reply's `recent_frames`: per published frame (oldest first) its id, wall-clock time, the
-/// copy into shared memory and the GPU time of each pass.
+/// copy into shared memory, the CPU's preparation of the frame and the GPU time of each pass.
 nlohmann::json recentFramesJson(const std::deque<FrameTimes>& frames)
 {
     nlohmann::json list = nlohmann::json::array();
@@ -58,7 +58,7 @@ nlohmann::json recentFramesJson(const std::deque<FrameTimes>& frames)
         for (const auto& [pass, ms] : f.gpuMs)
             gpu[pass] = roundedMs(ms);
         list.push_back({{"id", f.frameId}, {"ms", roundedMs(f.frameMs)}, {"publish_ms", roundedMs(f.publishMs)},
-                        {"gpu_ms", std::move(gpu)}});
+                        {"setup_ms", roundedMs(f.setupMs)}, {"gpu_ms", std::move(gpu)}});
     }
     return list;
 }

@@ -395,7 +395,7 @@ void RenderLoop::Impl::frameDone(uint64_t id, const SkyStatus& status, double ms
         s.lastFrameId = id;
         ++s.framesRendered;
         s.recordFrameMs(ms);
-        s.recordFrameTimes(FrameTimes{id, ms, lastPublishMs, result.gpuMs});
+        s.recordFrameTimes(FrameTimes{id, ms, lastPublishMs, result.cpuSetupMs, result.gpuMs});
         s.frameWeather = FrameWeather{result.weatherVersion, lastDrawn.source, result.weatherValidTimeUnixS, true};
     }
     else

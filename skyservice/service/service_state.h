@@ -33,6 +33,9 @@ struct FrameTimes
     uint64_t frameId = 0;
     double frameMs = 0;    ///< submit to published, wall clock
     double publishMs = 0;  ///< the copy into the shared-memory ring and the zero-copy export, wall clock
+    /// The CPU's preparation of the frame before its commands are recorded (RenderResult::cpuSetupMs: the
+    /// weather window's update and copy, the light volume's placement, the frame's parameters), wall clock
+    double setupMs = 0;
     std::map<std::string, double> gpuMs;  ///< GPU time per pass (RenderResult::gpuMs)
 };
 

@@ -37,6 +37,8 @@ get(march whole meanMs march)
 expect("a mean march time >= 0, got ${march}" march GREATER_EQUAL 0)
 get(publish whole meanMs publish)
 expect("a mean publish time >= 0, got ${publish}" publish GREATER_EQUAL 0)
+get(setup whole meanMs setup)
+expect("a mean CPU setup time > 0 (the daemon's recent_frames setup_ms), got ${setup}" setup GREATER 0)
 
 get(start slowestWindow startS)
 expect("the slowest second starts within the path (0..${SECONDS} s), got ${start}" start GREATER_EQUAL 0 AND
