@@ -158,10 +158,8 @@ TEST_F(GpuRender, SunSideOfACumulusIsBrighterThanItsShadowSide)
     ASSERT_GT(a.opaquePixels, 300u);
     ASSERT_GT(b.opaquePixels, 300u);
     EXPECT_NEAR(lit.sunElevationDeg, shadow.sunElevationDeg, 1.0);
-    // Measured 0.275 / 0.204 (1.35x) as shipped (the cell is 12 km away: the light volume's far cascade
-    // lights it), 0.280 / 0.201 (1.39x) without the cascade, 0.266 / 0.216 (1.23x: fails) with a cascade of
-    // 640 m texels; ~0.31 / 0.16 (1.9x) with 5x finer cloud steps, 0.292 / 0.194 (1.50x) with the march
-    // before the march's bisection fix.
+    // The cell is 12 km away: the light volume's far cascade lights it, and a cascade of 640 m texels
+    // fails the 1.3x (the measured figures: BENCHMARKS.md, "Test figures").
     std::printf("opaque luminance: sunlit side %.4f, shadow side %.4f\n", a.meanOpaqueLuminance, b.meanOpaqueLuminance);
     // Opaque pixels only: thin backlit edges are rightly bright (forward scattering, silver lining).
     EXPECT_GT(a.meanOpaqueLuminance, 1.3 * b.meanOpaqueLuminance)
@@ -170,8 +168,7 @@ TEST_F(GpuRender, SunSideOfACumulusIsBrighterThanItsShadowSide)
 
 // Deep in a cloud (view transmittance below RenderTuning::detailMinTransmittance, 0.2) the view
 // samples skip the detail erosion: a deck seen from above stays within 38 dB of the render that erodes
-// every sample (measured 39.2 dB; 47.5 at 0.1, the default before the current cloud shapes made eroded samples
-// dearer: render_tuning.h), and differs from it (the rule is in use).
+// every sample (the measured figures: BENCHMARKS.md, "Test figures"), and differs from it (the rule is in use).
 TEST_F(GpuRender, DeepSamplesWithoutDetailChangeLittle)
 {
     WeatherSnapshot w = deckBelowWeather();
@@ -191,11 +188,10 @@ TEST_F(GpuRender, DeepSamplesWithoutDetailChangeLittle)
 
 // The march's steps inside a cloud (RenderTuning::maxStepOpticalDepth 1: at most one optical depth)
 // against steps of 0.2 with 4x the step budget, close to the converged integral: a deck from above and
-// a sunlit cumulus cell from the side. Measured 31.9 and 37.9 dB (cloud radiance); 36.0 and 42.2 before the
-// light was matched to the path-traced reference (cloud_lighting.glsl): its diffuse octave remainder keeps
-// light deep inside the clouds, which the coarser steps integrate less exactly than the skin alone (peak
-// radiance 1.7 in the deck, so not just a brighter image). The limit at 1 without its floors for thin skin
-// (render_tuning.h) gave 40.5 and 39.4 with a 15 % darker sunlit side, under the earlier light.
+// a sunlit cumulus cell from the side. The light matched to the path-traced reference (cloud_lighting.glsl)
+// keeps light deep inside the clouds through its diffuse octave remainder, which the coarser steps
+// integrate less exactly than the skin alone, so the bounds are lower than under the earlier light
+// (the measured figures: BENCHMARKS.md, "Test figures").
 TEST_F(GpuRender, CloudStepsConvergeOnFinerSteps)
 {
     QualitySettings fine = testQuality();
@@ -226,18 +222,15 @@ TEST_F(GpuRender, CloudStepsConvergeOnFinerSteps)
 // Empty-space skipping (shaders/shared/column_bounds.h) changes only where the search samples, never
 // which clouds there are: the built-in weather toward the cumulonimbus from above the cumulus field, and
 // from FL350 over the deck, where rays graze the empty shell for 100+ km (most of the search skipped).
-// What differs is sampling noise at the far deck and the tower (with 1 frame instead of 4 accumulated:
-// 41.8 and 32.5 dB, with 4: 44.3 and 38.6 dB, the +3..6 dB of noise averaged down); the cloud pixels
-// agree within 0.06 % and the mean cloud luminance within 1 %. Skipping that hid the top 300 m of the
-// clouds failed the PSNR of the tower (40.6 dB); hiding the top 800 m failed both views (37.0, 29.9 dB).
-// The light tuned to the path-traced reference is noisier per sample (its cone's long sample stands for
-// twice the path): 41.4 and 35.1 dB with 4 frames, 43.7 and 38.2 with the 8 taken now; a hidden cloud top
-// is no noise and does not average away.
+// What differs is sampling noise at the far deck and the tower, which accumulating frames averages down
+// (8 are taken: the light tuned to the path-traced reference is noisier per sample, its cone's long
+// sample standing for twice the path); a hidden cloud top is no noise and does not average away: skipping
+// that hid the top 300 m of the clouds failed the tower's bound (the measured figures: BENCHMARKS.md, "Test figures").
 TEST_F(GpuRender, EmptySpaceSkippingDrawsTheSameClouds)
 {
     WeatherSnapshot w = makeBuiltinWeather(0);
     // A step budget that neither runs out of (with the test preset's 64, stepping every search sample ran
-    // out before the far deck: 23 dB, 3 % fewer cloud pixels than with skipping).
+    // out before the far deck).
     QualitySettings skipping = testQuality();
     skipping.maxViewSteps = 512;
     skipping.accumulationFrames = 8;
@@ -283,9 +276,8 @@ TEST_F(GpuRender, SunsetLightIsRedderThanNoonLight)
     ASSERT_GT(d.cloudPixels, 1000u);
     std::printf("cloud red/blue: noon %.4f, sun at 3 degrees %.4f\n", n.meanCloudRed / n.meanCloudBlue,
                 d.meanCloudRed / d.meanCloudBlue);
-    // Measured 1.26x as shipped, 1.28x with 5x finer cloud steps (CloudStepsConvergeOnFinerSteps). The
-    // 1.55x of the march before it came from sampling the sunlit skin over and over (its bisection ran
-    // again at every sample after a surface); without the reddening of the sunlight it would be ~1.
+    // Finer cloud steps give about the same ratio (CloudStepsConvergeOnFinerSteps), so 1.2x is the light,
+    // not the step; without the reddening of the sunlight it would be ~1 (the measured figures: BENCHMARKS.md, "Test figures").
     EXPECT_GT(d.meanCloudRed / d.meanCloudBlue, 1.2 * (n.meanCloudRed / n.meanCloudBlue));
 }
 
@@ -394,7 +386,7 @@ TEST_F(GpuRender, HighCloudSeenFromAboveLiesInFrontOfTheDeck)
     depthA /= opaque;
     depthB /= opaque;
     // The deck top lies 10 km and more away along these rays, the sheet 3 km and more: the sheet's alpha pulls
-    // the depth in (lavapipe: 13.9 km without the sheet, 10.0 km with it; radiance 11 % lower).
+    // the depth in and dims the radiance (the measured figures: BENCHMARKS.md, "Test figures").
     EXPECT_GT(depthA, 8000.0);
     EXPECT_LT(depthB, 0.95 * depthA) << "deck alone " << depthA << " m, with the sheet " << depthB << " m";
     EXPECT_GT(std::abs(lumB - lumA), 0.02 * lumA) << "deck alone " << lumA << ", with the sheet " << lumB;
